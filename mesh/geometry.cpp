@@ -1,0 +1,82 @@
+#include "mesh/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace rad {
+
+glm::dvec3 newellNormal(const Ring& ring) {
+  glm::dvec3 n(0.0);
+  glm::dvec3 o = ring[0];  // relative to a vertex, so far-from-origin polygons stay exact
+  for (size_t i = 0; i < ring.size(); ++i) {
+    glm::dvec3 a = ring[i] - o, b = ring[(i + 1) % ring.size()] - o;
+    n += glm::cross(a, b);
+  }
+  return n;
+}
+
+glm::dvec2 PlaneFrame::project(const glm::dvec3& p) const {
+  glm::dvec3 d = p - origin;
+  return {glm::dot(d, u), glm::dot(d, v)};
+}
+
+glm::dvec3 PlaneFrame::lift(const glm::dvec2& q) const { return origin + q.x * u + q.y * v; }
+
+PlaneFrame planeFrame(const Ring& ring) {
+  PlaneFrame f;
+  f.origin = glm::dvec3(0.0);
+  for (const auto& p : ring) f.origin += p;
+  f.origin /= double(ring.size());
+  glm::dvec3 n = newellNormal(ring);
+  double len = glm::length(n);
+  f.normal = len > 0 ? n / len : glm::dvec3(0, 0, 1);
+  // u along the axis least aligned with the normal, for a well-conditioned frame.
+  glm::dvec3 a = std::abs(f.normal.x) < 0.6 ? glm::dvec3(1, 0, 0)
+                 : std::abs(f.normal.y) < 0.6 ? glm::dvec3(0, 1, 0)
+                                              : glm::dvec3(0, 0, 1);
+  f.u = glm::normalize(glm::cross(a, f.normal));
+  f.v = glm::cross(f.normal, f.u);
+  return f;
+}
+
+double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+double polygonArea(const Polygon& polygon) {
+  glm::dvec3 n = newellNormal(polygon.outer);
+  double len = glm::length(n);
+  if (len == 0) return 0.0;
+  glm::dvec3 unit = n / len;
+  double area = 0.5 * len;
+  for (const auto& hole : polygon.holes) area -= 0.5 * std::abs(glm::dot(newellNormal(hole), unit));
+  return area;
+}
+
+double ringDiameter(const Ring& ring) {
+  double d = 0;
+  for (size_t i = 0; i < ring.size(); ++i)
+    for (size_t j = i + 1; j < ring.size(); ++j) d = std::max(d, glm::length(ring[i] - ring[j]));
+  return d;
+}
+
+double maxPlaneDistance(const PlaneFrame& frame, const Ring& ring) {
+  double d = 0;
+  for (const auto& p : ring) d = std::max(d, std::abs(glm::dot(p - frame.origin, frame.normal)));
+  return d;
+}
+
+bool insideRing(const PlaneFrame& frame, const Ring& ring, const glm::dvec3& p) {
+  glm::dvec2 q = frame.project(p);
+  bool inside = false;
+  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    glm::dvec2 a = frame.project(ring[i]), b = frame.project(ring[j]);
+    if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y))
+      inside = !inside;
+  }
+  return inside;
+}
+
+}  // namespace rad

@@ -1,0 +1,22 @@
+#pragma once
+// Reading polygon meshes from OBJ (with MTL), PLY and OFF files.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/scene.h"
+
+namespace rad {
+
+/// The faces of a mesh file that share one material.
+struct MeshFileGroup {
+  std::string material;                 ///< the MTL material name; empty when the file has none
+  std::optional<glm::dvec3> kd, ke;     ///< MTL diffuse colour and radiance, when given
+  std::vector<Polygon> faces;
+};
+
+/// Reads an OBJ (faces grouped by MTL material), PLY or OFF file (one group).
+/// `where` prefixes error messages. Throws InputError if the file is missing or does not parse.
+std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where);
+
+}  // namespace rad

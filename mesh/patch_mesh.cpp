@@ -1,0 +1,509 @@
+// Surfaces ▸ planar pieces ▸ patches ▸ elements.
+//
+// Meshing runs twice with one mechanism: planar pieces are meshed into patches (triangles no
+// longer than maxPatchEdge), then every patch is meshed into elements (no longer than
+// maxElementEdge), so elements nest inside patches. In each pass every boundary edge is cut
+// at the corners of other pieces that lie on it and then into equal parts; the parts are
+// keyed by their end points, so two pieces sharing an edge compute the very same points
+// on it. Delaunay refinement may still split a boundary part (encroachment); such points
+// are added to the shared part and its other users are meshed again until all agree.
+#include "mesh/patch_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "mesh/polygon_mesher.h"
+
+namespace rad {
+namespace {
+
+/// Points on a boundary closer than this times the scene diagonal to an edge lie on it.
+constexpr double kOnEdgeTolerance = 1e-7;
+/// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
+constexpr int kMaxAgreementRounds = 200;
+/// Patch diameters may exceed maxPatchEdge by round-off only.
+
+/// Every distinct position gets one id, so equal points compare by id.
+class PointTable {
+ public:
+  int id(const glm::dvec3& p) {
+    Key k{p.x + 0.0, p.y + 0.0, p.z + 0.0};  // + 0.0 folds -0 into 0
+    auto [it, added] = index_.emplace(k, int(points_.size()));
+    if (added) points_.push_back(p);
+    return it->second;
+  }
+  const glm::dvec3& operator[](int i) const { return points_[i]; }
+  int size() const { return int(points_.size()); }
+
+ private:
+  using Key = std::array<double, 3>;
+  struct Hash {
+    size_t operator()(const Key& k) const {
+      std::hash<double> h;
+      return h(k[0]) * 73856093u ^ h(k[1]) * 19349663u ^ h(k[2]) * 83492791u;
+    }
+  };
+  std::vector<glm::dvec3> points_;
+  std::unordered_map<Key, int, Hash> index_;
+};
+
+/// A planar polygon with holes whose ring points are ids in a PointTable.
+struct Piece {
+  int surface = -1;
+  PlaneFrame frame;
+  std::vector<std::vector<int>> rings;
+};
+
+/// A uniform grid over point ids, to find the points near a segment.
+class PointGrid {
+ public:
+  PointGrid(const PointTable& table, const std::vector<int>& ids) : table_(table) {
+    glm::dvec3 hi(-HUGE_VAL);
+    lo_ = glm::dvec3(HUGE_VAL);
+    for (int i : ids) {
+      lo_ = glm::min(lo_, table[i]);
+      hi = glm::max(hi, table[i]);
+    }
+    double extent = std::max({hi.x - lo_.x, hi.y - lo_.y, hi.z - lo_.z, 1e-300});
+    int cells = std::clamp(int(2 * std::cbrt(double(ids.size()))), 1, 256);
+    cell_ = extent / cells * (1 + 1e-9);
+    for (int i : ids) cells_[cellOf(table[i])].push_back(i);
+  }
+
+  /// Calls f(id) for every point in the cells touching the box [lo, hi].
+  template <class F>
+  void visit(const glm::dvec3& lo, const glm::dvec3& hi, F f) const {
+    auto a = cellOf(lo), b = cellOf(hi);
+    for (int64_t x = a[0]; x <= b[0]; ++x)
+      for (int64_t y = a[1]; y <= b[1]; ++y)
+        for (int64_t z = a[2]; z <= b[2]; ++z) {
+          auto it = cells_.find({x, y, z});
+          if (it != cells_.end())
+            for (int i : it->second) f(i);
+        }
+  }
+
+ private:
+  using Cell = std::array<int64_t, 3>;
+  struct Hash {
+    size_t operator()(const Cell& c) const {
+      return size_t(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
+    }
+  };
+  Cell cellOf(const glm::dvec3& p) const {
+    glm::dvec3 q = (p - lo_) / cell_;
+    return {int64_t(std::floor(q.x)), int64_t(std::floor(q.y)), int64_t(std::floor(q.z))};
+  }
+  const PointTable& table_;
+  glm::dvec3 lo_;
+  double cell_ = 1;
+  std::unordered_map<Cell, std::vector<int>, Hash> cells_;
+};
+
+/// A boundary part between two corners, cut at parameters t in (0, 1) from a to b (a < b).
+struct Segment {
+  int a = -1, b = -1;
+  std::vector<double> t;
+  std::vector<int> users;  ///< pieces whose boundary runs along it
+};
+
+/// Meshes a set of pieces at one edge length so that shared boundaries agree.
+class PieceMesher {
+ public:
+  PieceMesher(PointTable& table, std::vector<Piece> pieces, double maxEdge, double tolerance,
+              std::vector<std::string> wheres)
+      : table_(table), pieces_(std::move(pieces)), wheres_(std::move(wheres)),
+        maxEdge_(maxEdge), tolerance_(tolerance) {}
+
+  /// Triangles as point ids, per piece; rounds counts the agreement passes.
+  std::vector<std::vector<std::array<int, 3>>> run(int& rounds) {
+    cutBoundaries();
+    results_.resize(pieces_.size());
+    std::vector<bool> dirty(pieces_.size(), true);
+    for (rounds = 1;; ++rounds) {
+      std::vector<int> todo;
+      for (size_t p = 0; p < pieces_.size(); ++p)
+        if (dirty[p]) todo.push_back(int(p));
+      if (todo.empty()) break;
+      std::fill(dirty.begin(), dirty.end(), false);
+      bool last = rounds == kMaxAgreementRounds;
+      for (int p : todo) meshPiece(p, last ? nullptr : &dirty);
+      if (last) break;
+    }
+    return std::move(results_);
+  }
+
+  const std::vector<Piece>& pieces() const { return pieces_; }
+  int unresolvedPoints() const { return unresolved_; }
+
+ private:
+  struct ChainEdge {
+    int segment;
+    bool forward;
+  };
+
+  glm::dvec3 pointOn(const Segment& s, double t) const {
+    return table_[s.a] + (table_[s.b] - table_[s.a]) * t;
+  }
+
+  /// Cuts every ring edge at the ring corners of other pieces lying on it, then into parts
+  /// no longer than maxEdge.
+  void cutBoundaries() {
+    std::vector<int> corners;
+    for (const auto& piece : pieces_)
+      for (const auto& ring : piece.rings) corners.insert(corners.end(), ring.begin(), ring.end());
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    PointGrid grid(table_, corners);
+    chains_.resize(pieces_.size());
+    for (size_t p = 0; p < pieces_.size(); ++p)
+      for (const auto& ring : pieces_[p].rings) {
+        std::vector<ChainEdge> chain;
+        for (size_t k = 0; k < ring.size(); ++k)
+          cutEdge(int(p), ring[k], ring[(k + 1) % ring.size()], grid, chain);
+        chains_[p].push_back(std::move(chain));
+      }
+  }
+
+  void cutEdge(int piece, int from, int to, const PointGrid& grid, std::vector<ChainEdge>& chain) {
+    glm::dvec3 a = table_[from], b = table_[to], d = b - a;
+    double len2 = glm::dot(d, d);
+    std::vector<std::pair<double, int>> cuts;
+    glm::dvec3 pad(tolerance_);
+    grid.visit(glm::min(a, b) - pad, glm::max(a, b) + pad, [&](int c) {
+      if (c == from || c == to) return;
+      double t = glm::dot(table_[c] - a, d) / len2;
+      if (t <= 0 || t >= 1) return;
+      if (glm::length(a + d * t - table_[c]) <= tolerance_) cuts.emplace_back(t, c);
+    });
+    std::sort(cuts.begin(), cuts.end());
+    int prev = from;
+    cuts.emplace_back(1.0, to);
+    for (const auto& [t, c] : cuts) {
+      if (c == prev) continue;
+      chain.push_back({segmentBetween(prev, c, piece), prev < c});
+      prev = c;
+    }
+  }
+
+  int segmentBetween(int p, int q, int piece) {
+    auto key = std::minmax(p, q);
+    auto [it, added] = segmentIndex_.emplace(key, int(segments_.size()));
+    if (added) {
+      Segment s;
+      s.a = key.first;
+      s.b = key.second;
+      int n = std::max(1, int(std::ceil(glm::length(table_[s.b] - table_[s.a]) / maxEdge_ - 1e-9)));
+      for (int k = 1; k < n; ++k) s.t.push_back(double(k) / n);
+      segments_.push_back(std::move(s));
+    }
+    auto& users = segments_[it->second].users;
+    if (users.empty() || users.back() != piece) users.push_back(piece);
+    return it->second;
+  }
+
+  /// The boundary of piece p as point ids, ring by ring, and for each boundary point the
+  /// chain edge it starts.
+  void boundary(int p, std::vector<std::vector<int>>& ids,
+                std::vector<std::vector<int>>& edgeOf) {
+    for (const auto& chain : chains_[p]) {
+      std::vector<int> ring, edges;
+      for (size_t k = 0; k < chain.size(); ++k) {
+        const Segment& s = segments_[chain[k].segment];
+        ring.push_back(chain[k].forward ? s.a : s.b);
+        edges.push_back(int(k));
+        for (size_t j = 0; j < s.t.size(); ++j) {
+          double t = chain[k].forward ? s.t[j] : s.t[s.t.size() - 1 - j];
+          ring.push_back(table_.id(pointOn(s, t)));
+          edges.push_back(int(k));
+        }
+      }
+      ids.push_back(std::move(ring));
+      edgeOf.push_back(std::move(edges));
+    }
+  }
+
+  void meshPiece(int p, std::vector<bool>* dirty) {
+    const Piece& piece = pieces_[p];
+    std::vector<std::vector<int>> ids, edgeOf;
+    boundary(p, ids, edgeOf);
+    Polygon2 poly;
+    poly.ids = ids;
+    for (const auto& ring : ids) {
+      std::vector<glm::dvec2> pts;
+      for (int id : ring) pts.push_back(piece.frame.project(table_[id]));
+      poly.rings.push_back(std::move(pts));
+    }
+    Triangulation2 tri = meshPolygon(poly, maxEdge_, wheres_[p]);
+    std::vector<int> global(tri.points.size());
+    for (size_t i = 0; i < tri.points.size(); ++i) {
+      if (tri.ids[i] >= 0)
+        global[i] = tri.ids[i];
+      else if (tri.onBoundary[i] && dirty)
+        global[i] = addBoundaryPoint(p, poly, edgeOf, tri.points[i], *dirty);
+      else {
+        if (tri.onBoundary[i]) ++unresolved_;
+        global[i] = table_.id(piece.frame.lift(tri.points[i]));
+      }
+    }
+    auto& out = results_[p];
+    out.clear();
+    for (const auto& t : tri.triangles) out.push_back({global[t[0]], global[t[1]], global[t[2]]});
+  }
+
+  /// Registers a point the mesher put on piece p's boundary with the shared segment, and
+  /// marks the segment's other users for meshing again.
+  int addBoundaryPoint(int p, const Polygon2& poly, const std::vector<std::vector<int>>& edgeOf,
+                       const glm::dvec2& q, std::vector<bool>& dirty) {
+    double best = HUGE_VAL;
+    int bestRing = 0, bestK = 0;
+    for (size_t r = 0; r < poly.rings.size(); ++r) {
+      const auto& ring = poly.rings[r];
+      for (size_t k = 0; k < ring.size(); ++k) {
+        glm::dvec2 a = ring[k], b = ring[(k + 1) % ring.size()];
+        glm::dvec2 d = b - a;
+        double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
+        double dist = glm::length(a + d * t - q);
+        if (dist < best) best = dist, bestRing = int(r), bestK = int(k);
+      }
+    }
+    ChainEdge edge = chains_[p][bestRing][edgeOf[bestRing][bestK]];
+    Segment& s = segments_[edge.segment];
+    glm::dvec3 x = pieces_[p].frame.lift(q), d = table_[s.b] - table_[s.a];
+    double t = std::clamp(glm::dot(x - table_[s.a], d) / glm::dot(d, d), 1e-12, 1 - 1e-12);
+    s.t.insert(std::upper_bound(s.t.begin(), s.t.end(), t), t);
+    for (int user : s.users)
+      if (user != p) dirty[user] = true;
+    return table_.id(pointOn(s, t));
+  }
+
+  PointTable& table_;
+  std::vector<Piece> pieces_;
+  std::vector<std::string> wheres_;
+  double maxEdge_, tolerance_;
+  std::vector<Segment> segments_;
+  std::map<std::pair<int, int>, int> segmentIndex_;
+  std::vector<std::vector<std::vector<ChainEdge>>> chains_;
+  std::vector<std::vector<std::array<int, 3>>> results_;
+  int unresolved_ = 0;
+};
+
+std::string formatLength(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+/// Splits every polygon into planar pieces; a non-planar one is triangulated, with a warning.
+std::vector<Piece> planarPieces(const Scene& scene, PointTable& table,
+                                std::vector<std::string>& wheres,
+                                std::vector<std::string>& warnings) {
+  std::vector<Piece> pieces;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    const Surface& surface = scene.surfaces[s];
+    int triangulated = 0;
+    double worst = 0;
+    for (const auto& polygon : surface.polygons) {
+      Piece piece;
+      piece.surface = int(s);
+      piece.frame = planeFrame(polygon.outer);
+      std::vector<Ring> rings{polygon.outer};
+      rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());
+      double off = 0;
+      for (const auto& ring : rings) off = std::max(off, maxPlaneDistance(piece.frame, ring));
+      for (const auto& ring : rings) {
+        std::vector<int> ids;
+        for (const auto& q : ring) {
+          int id = table.id(q);
+          if (ids.empty() || ids.back() != id) ids.push_back(id);  // drop repeated points
+        }
+        while (ids.size() > 1 && ids.back() == ids.front()) ids.pop_back();
+        piece.rings.push_back(std::move(ids));
+      }
+      if (off <= kPlanarity * ringDiameter(polygon.outer)) {
+        pieces.push_back(std::move(piece));
+        wheres.push_back(surface.where);
+        continue;
+      }
+      // Not planar: cut into triangles, each planar, sharing their diagonals.
+      Polygon2 poly;
+      poly.ids = piece.rings;
+      for (const auto& ring : piece.rings) {
+        std::vector<glm::dvec2> pts;
+        for (int id : ring) pts.push_back(piece.frame.project(table[id]));
+        poly.rings.push_back(std::move(pts));
+      }
+      Triangulation2 tri = triangulatePolygon(poly, surface.where);
+      for (const auto& t : tri.triangles) {
+        Piece part;
+        part.surface = int(s);
+        part.rings = {{tri.ids[t[0]], tri.ids[t[1]], tri.ids[t[2]]}};
+        part.frame = planeFrame({table[part.rings[0][0]], table[part.rings[0][1]],
+                                 table[part.rings[0][2]]});
+        pieces.push_back(std::move(part));
+        wheres.push_back(surface.where);
+      }
+      ++triangulated;
+      worst = std::max(worst, off);
+    }
+    if (triangulated)
+      warnings.push_back(surface.where + " (" + surface.name + "): " +
+                         std::to_string(triangulated) +
+                         " non-planar polygon(s) triangulated into planar triangles (a vertex lies " +
+                         formatLength(worst) + " off the best-fit plane)");
+  }
+  return pieces;
+}
+
+double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  glm::dvec3 u = b - a, v = c - a;
+  return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI;
+}
+
+}  // namespace
+
+PatchMesh::PatchMesh() {
+  mesh.add_property(surface_, "surface");
+  mesh.add_property(side_, "side");
+  mesh.add_property(patch_, "patch");
+  mesh.add_property(area_, "area");
+  mesh.add_property(reflectance_, "reflectance");
+  mesh.add_property(emission_, "emission");
+}
+
+glm::dvec3 PatchMesh::centroid(int e) const {
+  auto c = corners(e);
+  return (c[0] + c[1] + c[2]) / 3.0;
+}
+
+std::array<glm::dvec3, 3> PatchMesh::corners(int e) const {
+  std::array<glm::dvec3, 3> out;
+  int k = 0;
+  for (auto v : mesh.fv_range(face(e))) out[k++] = toGlm(mesh.point(v));
+  return out;
+}
+
+void PatchMesh::setElement(int e, int surface, int side, double area,
+                           const glm::dvec3& reflectance, const glm::dvec3& emission,
+                           const glm::dvec3& normal) {
+  auto f = face(e);
+  mesh.property(surface_, f) = surface;
+  mesh.property(side_, f) = side;
+  mesh.property(patch_, f) = -1;
+  mesh.property(area_, f) = area;
+  mesh.property(reflectance_, f) = toOpenMesh(reflectance);
+  mesh.property(emission_, f) = toOpenMesh(emission);
+  mesh.set_normal(f, toOpenMesh(normal));
+}
+
+PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
+  RAD_CHECK(settings.maxElementEdge > 0);
+  RAD_CHECK(settings.maxPatchEdge > 0);
+  PatchMesh out;
+  out.surfaces.resize(scene.surfaces.size());
+  PointTable table;
+  std::vector<std::string> wheres;
+  std::vector<Piece> pieces = planarPieces(scene, table, wheres, out.warnings);
+  double tolerance = kOnEdgeTolerance * scene.diagonal();
+
+  // Pass 1: pieces into patches.
+  int rounds1 = 0, rounds2 = 0;
+  PieceMesher coarse(table, pieces, settings.maxPatchEdge, tolerance, wheres);
+  auto patchTriangles = coarse.run(rounds1);
+  std::vector<Piece> patchPieces;
+  std::vector<std::string> patchWheres;
+  for (size_t p = 0; p < pieces.size(); ++p)
+    for (const auto& t : patchTriangles[p]) {
+      patchPieces.push_back(Piece{pieces[p].surface, pieces[p].frame, {{t[0], t[1], t[2]}}});
+      patchWheres.push_back(wheres[p]);
+    }
+
+  // Pass 2: patches into elements.
+  PieceMesher fine(table, patchPieces, settings.maxElementEdge, tolerance, patchWheres);
+  auto elementTriangles = fine.run(rounds2);
+  out.stats.rounds = std::max(rounds1, rounds2);
+  int unresolved = coarse.unresolvedPoints() + fine.unresolvedPoints();
+  if (unresolved)
+    out.warnings.push_back("meshing: " + std::to_string(unresolved) +
+                           " boundary points could not be shared with the neighbouring surface");
+
+  // Build the OpenMesh mesh, one vertex set per surface side.
+  std::vector<std::vector<int>> patchesOfSurface(scene.surfaces.size());
+  for (size_t p = 0; p < patchPieces.size(); ++p) patchesOfSurface[patchPieces[p].surface].push_back(int(p));
+  int nonManifold = 0;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    const Surface& surface = scene.surfaces[s];
+    const Material& material = scene.materials[surface.material];
+    for (int side = 0; side < (surface.twoSided ? 2 : 1); ++side) {
+      std::unordered_map<int, TriMesh::VertexHandle> vertexOf;
+      auto vertex = [&](int id) -> TriMesh::VertexHandle {
+        auto it = vertexOf.find(id);
+        if (it != vertexOf.end()) return it->second;
+        auto v = out.mesh.add_vertex(PatchMesh::toOpenMesh(table[id]));
+        vertexOf[id] = v;
+        return v;
+      };
+      for (int p : patchesOfSurface[s]) {
+        Patch patch;
+        patch.surface = int(s);
+        patch.side = side;
+        glm::dvec3 normal = patchPieces[p].frame.normal * (side ? -1.0 : 1.0);
+        for (auto t : elementTriangles[p]) {
+          if (side) std::swap(t[1], t[2]);
+          glm::dvec3 a = table[t[0]], b = table[t[1]], c = table[t[2]];
+          double area = triangleArea(a, b, c);
+          if (!(area > 0)) continue;  // cannot happen after Delaunay refinement; never add zero area
+          auto f = out.mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2]));
+          if (!f.is_valid()) {  // non-manifold input (mesh files): give the face its own corners
+            ++nonManifold;
+            f = out.mesh.add_face(out.mesh.add_vertex(PatchMesh::toOpenMesh(a)),
+                                  out.mesh.add_vertex(PatchMesh::toOpenMesh(b)),
+                                  out.mesh.add_vertex(PatchMesh::toOpenMesh(c)));
+          }
+          int e = f.idx();
+          out.setElement(e, int(s), side, area, material.reflectance, material.emission, normal);
+          out.setPatch(e, int(out.patches.size()));
+          patch.elements.push_back(e);
+          patch.area += area;
+          patch.centroid += area * (a + b + c) / 3.0;
+          out.stats.minAngleDeg = std::min({out.stats.minAngleDeg, angleDeg(a, b, c),
+                                            angleDeg(b, c, a), angleDeg(c, a, b)});
+          out.stats.maxEdge = std::max({out.stats.maxEdge, glm::length(b - a),
+                                        glm::length(c - b), glm::length(a - c)});
+        }
+        if (patch.elements.empty()) continue;
+        patch.centroid /= patch.area;
+        patch.normal = normal;
+        const auto& r = patchPieces[p].rings[0];
+        patch.diameter = std::max({glm::length(table[r[0]] - table[r[1]]),
+                                   glm::length(table[r[1]] - table[r[2]]),
+                                   glm::length(table[r[2]] - table[r[0]])});
+        out.stats.maxPatchDiameter = std::max(out.stats.maxPatchDiameter, patch.diameter);
+        if (side == 0) out.surfaces[s].area += patch.area;
+        out.surfaces[s].elements += int(patch.elements.size());
+        out.surfaces[s].patches += 1;
+        out.patches.push_back(std::move(patch));
+      }
+    }
+  }
+  if (nonManifold)
+    out.warnings.push_back("meshing: " + std::to_string(nonManifold) +
+                           " faces on non-manifold edges got their own vertices");
+
+  // Vertex normals: area-weighted mean of the adjacent element normals.
+  for (auto v : out.mesh.vertices()) {
+    OpenMesh::Vec3d n(0, 0, 0);
+    for (auto f : out.mesh.vf_range(v)) n += out.mesh.normal(f) * out.area(f.idx());
+    out.mesh.set_normal(v, n.normalized());
+  }
+  return out;
+}
+
+}  // namespace rad

@@ -1,0 +1,98 @@
+#pragma once
+// The patch mesh: surfaces ▸ patches (the shooters) ▸ elements (the receivers, triangles).
+#include <string>
+#include <vector>
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <glm/vec3.hpp>
+
+#include "mesh/scene.h"
+
+namespace rad {
+
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Normal);
+  FaceAttributes(OpenMesh::Attributes::Normal);
+};
+/// Double precision so that scenes at kilometre or micrometre scale mesh alike.
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+/// Lengths in scene units.
+struct MeshSettings {
+  double maxElementEdge = 0;  ///< no element edge is longer
+  double maxPatchEdge = 0;    ///< no patch is wider (largest distance between its points)
+};
+
+/// A shooter: a connected group of elements of one surface side.
+struct Patch {
+  int surface = -1;
+  int side = 0;                ///< 0 front, 1 back (two-sided surfaces)
+  std::vector<int> elements;   ///< face indices
+  double area = 0;
+  glm::dvec3 centroid{0.0};    ///< area-weighted
+  glm::dvec3 normal{0.0};      ///< area-weighted mean, unit
+  double diameter = 0;
+};
+
+/// Per-surface totals.
+struct SurfaceSummary {
+  double area = 0;  ///< one side
+  int elements = 0, patches = 0;
+};
+
+/// Facts about the meshing, for `radiosity info` and the tests.
+struct MeshStats {
+  double minAngleDeg = 180, maxEdge = 0, maxPatchDiameter = 0;
+  int rounds = 0;  ///< boundary agreement rounds between neighbouring surfaces
+};
+
+/// Elements are the faces of an OpenMesh triangle mesh. Vertices are shared within one side
+/// of one surface only; where two surfaces meet, their elements meet at the same points.
+class PatchMesh {
+ public:
+  PatchMesh();
+
+  TriMesh mesh;
+  std::vector<Patch> patches;
+  std::vector<SurfaceSummary> surfaces;  ///< parallel to Scene::surfaces
+  MeshStats stats;
+  std::vector<std::string> warnings;     ///< what the mesher changed ("triangulated ...")
+
+  int elementCount() const { return int(mesh.n_faces()); }
+  int surface(int e) const { return mesh.property(surface_, face(e)); }
+  int side(int e) const { return mesh.property(side_, face(e)); }
+  int patch(int e) const { return mesh.property(patch_, face(e)); }
+  double area(int e) const { return mesh.property(area_, face(e)); }
+  glm::dvec3 reflectance(int e) const { return toGlm(mesh.property(reflectance_, face(e))); }
+  glm::dvec3 emission(int e) const { return toGlm(mesh.property(emission_, face(e))); }
+  glm::dvec3 normal(int e) const { return toGlm(mesh.normal(face(e))); }
+  glm::dvec3 centroid(int e) const;
+  /// The three corners of element e, counter-clockwise seen from its lit side.
+  std::array<glm::dvec3, 3> corners(int e) const;
+
+  /// Adds element (a, b, c) with its attributes; used by buildPatchMesh.
+  void setElement(int e, int surface, int side, double area, const glm::dvec3& reflectance,
+                  const glm::dvec3& emission, const glm::dvec3& normal);
+  void setPatch(int e, int patch) { mesh.property(patch_, face(e)) = patch; }
+
+  static glm::dvec3 toGlm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
+  static OpenMesh::Vec3d toOpenMesh(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+ private:
+  static TriMesh::FaceHandle face(int e) { return TriMesh::FaceHandle(e); }
+  OpenMesh::FPropHandleT<int> surface_, side_, patch_;
+  OpenMesh::FPropHandleT<double> area_;
+  OpenMesh::FPropHandleT<OpenMesh::Vec3d> reflectance_, emission_;
+};
+
+/// Meshes every surface of the scene: planar pieces (non-planar polygons are triangulated,
+/// with a warning) are refined by Delaunay refinement so that no element edge exceeds
+/// settings.maxElementEdge and angles stay above 20.7 degrees where the input allows;
+/// neighbouring surfaces are split at the same points along shared edges; elements are then
+/// grouped into patches no wider than settings.maxPatchEdge. Two-sided surfaces get a second,
+/// opposite-facing copy. Throws InputError for polygons that cannot be meshed.
+PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings);
+
+}  // namespace rad

@@ -1,0 +1,65 @@
+#include "mesh/ply_writer.h"
+
+#include <cstring>
+#include <ostream>
+
+#include "mesh/error.h"
+#include "mesh/output_file.h"
+
+namespace rad {
+namespace {
+
+const char* typeName(PlyColumn::Type t) {
+  switch (t) {
+    case PlyColumn::Type::Float: return "float";
+    case PlyColumn::Type::Int: return "int";
+    default: return "uchar";
+  }
+}
+
+template <class T>
+void put(std::ostream& out, T value) {
+  static_assert(sizeof(T) <= 4);
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));  // x86-64 and every target we build for are little-endian
+  out.write(bytes, sizeof(T));
+}
+
+void putValue(std::ostream& out, PlyColumn::Type t, double v) {
+  switch (t) {
+    case PlyColumn::Type::Float: put(out, float(v)); break;
+    case PlyColumn::Type::Int: put(out, int32_t(v)); break;
+    default: put(out, uint8_t(v)); break;
+  }
+}
+
+void checkColumns(const std::vector<PlyColumn>& columns, size_t n) {
+  for (const auto& c : columns) RAD_CHECK_EQ(c.values.size(), n);
+}
+
+}  // namespace
+
+void writePly(const std::string& path, const PlyMesh& mesh) {
+  size_t nv = mesh.vertex.empty() ? 0 : mesh.vertex[0].values.size();
+  checkColumns(mesh.vertex, nv);
+  checkColumns(mesh.face, mesh.faces.size());
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "ply\nformat binary_little_endian 1.0\n";
+    for (const auto& c : mesh.comments) out << "comment " << c << "\n";
+    out << "element vertex " << nv << "\n";
+    for (const auto& c : mesh.vertex) out << "property " << typeName(c.type) << " " << c.name << "\n";
+    out << "element face " << mesh.faces.size() << "\n";
+    out << "property list uchar int vertex_indices\n";
+    for (const auto& c : mesh.face) out << "property " << typeName(c.type) << " " << c.name << "\n";
+    out << "end_header\n";
+    for (size_t i = 0; i < nv; ++i)
+      for (const auto& c : mesh.vertex) putValue(out, c.type, c.values[i]);
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      put(out, uint8_t(3));
+      for (int k = 0; k < 3; ++k) put(out, int32_t(mesh.faces[f][k]));
+      for (const auto& c : mesh.face) putValue(out, c.type, c.values[f]);
+    }
+  });
+}
+
+}  // namespace rad

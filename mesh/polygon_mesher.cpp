@@ -1,0 +1,173 @@
+// CGAL's constrained Delaunay triangulation and Delaunay refinement (Mesh_2).
+#include "mesh/polygon_mesher.h"
+
+#include <cmath>
+#include <map>
+#include <queue>
+#include <string>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "mesh/error.h"
+
+namespace rad {
+namespace {
+
+struct PointId {
+  int id = -1;
+};
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<PointId, K>;
+using Fb = CGAL::Delaunay_mesh_face_base_2<K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+using Face = CDT::Face_handle;
+
+/// Inserts every ring as a closed chain of constraints.
+void insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
+  try {
+    for (size_t r = 0; r < polygon.rings.size(); ++r) {
+      const auto& ring = polygon.rings[r];
+      std::vector<CDT::Vertex_handle> vs;
+      for (size_t k = 0; k < ring.size(); ++k) {
+        auto v = cdt.insert(K::Point_2(ring[k].x, ring[k].y));
+        v->info().id = polygon.ids[r][k];
+        vs.push_back(v);
+      }
+      for (size_t k = 0; k < vs.size(); ++k)
+        if (vs[k] != vs[(k + 1) % vs.size()]) cdt.insert_constraint(vs[k], vs[(k + 1) % vs.size()]);
+    }
+  } catch (const CDT::Intersection_of_constraints_exception&) {
+    throw inputError(where, "a simple polygon whose holes lie inside it",
+                     "edges that cross each other");
+  }
+}
+
+/// Marks faces by nesting depth across constraints (odd = inside the polygon minus its holes)
+/// and returns one seed point in each connected part of the inside.
+std::vector<K::Point_2> markInside(CDT& cdt) {
+  std::map<Face, int> depth;
+  std::queue<Face> frontier, next;  // breadth-first, one nesting level at a time
+  std::vector<K::Point_2> seeds;
+  next.push(cdt.infinite_face());
+  depth[cdt.infinite_face()] = 0;
+  int level = 0;
+  while (!next.empty()) {
+    std::swap(frontier, next);
+    while (!frontier.empty()) {
+      Face f = frontier.front();
+      frontier.pop();
+      for (int i = 0; i < 3; ++i) {
+        Face g = f->neighbor(i);
+        if (depth.count(g)) continue;
+        if (cdt.is_constrained(CDT::Edge(f, i))) {
+          depth[g] = level + 1;
+          next.push(g);
+        } else {
+          depth[g] = level;
+          frontier.push(g);
+        }
+      }
+    }
+    ++level;
+  }
+  // One seed per connected inside component (components split by constraints).
+  std::map<Face, bool> seen;
+  for (auto f : cdt.finite_face_handles()) {
+    f->set_in_domain(depth[f] % 2 == 1);
+    if (!f->is_in_domain() || seen[f]) continue;
+    seeds.push_back(CGAL::centroid(cdt.triangle(f)));
+    std::queue<Face> q;
+    q.push(f);
+    seen[f] = true;
+    while (!q.empty()) {
+      Face g = q.front();
+      q.pop();
+      for (int i = 0; i < 3; ++i) {
+        Face h = g->neighbor(i);
+        if (cdt.is_infinite(h) || seen[h] || cdt.is_constrained(CDT::Edge(g, i))) continue;
+        if (depth[h] % 2 == 1) {
+          seen[h] = true;
+          q.push(h);
+        }
+      }
+    }
+  }
+  return seeds;
+}
+
+Triangulation2 extract(const CDT& cdt) {
+  Triangulation2 out;
+  std::map<CDT::Vertex_handle, int> index;
+  for (auto v : cdt.finite_vertex_handles()) {
+    index[v] = int(out.points.size());
+    out.points.emplace_back(v->point().x(), v->point().y());
+    out.ids.push_back(v->info().id);
+    bool boundary = false;
+    if (v->info().id < 0) {
+      auto e = cdt.incident_edges(v), end = e;
+      do {
+        boundary = boundary || cdt.is_constrained(*e);
+      } while (++e != end);
+    }
+    out.onBoundary.push_back(boundary);
+  }
+  for (auto f : cdt.finite_face_handles())
+    if (f->is_in_domain())
+      out.triangles.push_back({index[f->vertex(0)], index[f->vertex(1)], index[f->vertex(2)]});
+  return out;
+}
+
+double angleAt(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  glm::dvec2 u = b - a, v = c - a;
+  return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
+}
+
+/// A lone triangle that already meets the criteria needs no CGAL at all (mesh files).
+bool isGoodTriangle(const Polygon2& p, double maxEdge) {
+  if (p.rings.size() != 1 || p.rings[0].size() != 3) return false;
+  const auto& r = p.rings[0];
+  const double lo = kMeshMinAngleDeg * M_PI / 180, hi = M_PI / 2;  // obtuse: encroached
+  for (int i = 0; i < 3; ++i) {
+    double a = angleAt(r[i], r[(i + 1) % 3], r[(i + 2) % 3]);
+    double len = std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y);
+    if (a < lo || a > hi || len > maxEdge) return false;
+  }
+  double cross = (r[1].x - r[0].x) * (r[2].y - r[0].y) - (r[1].y - r[0].y) * (r[2].x - r[0].x);
+  return cross > 0;
+}
+
+}  // namespace
+
+Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
+  CDT cdt;
+  insertRings(cdt, polygon, where);
+  markInside(cdt);
+  return extract(cdt);
+}
+
+Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where) {
+  if (isGoodTriangle(polygon, maxEdge)) {
+    Triangulation2 out;
+    out.points = polygon.rings[0];
+    out.ids = polygon.ids[0];
+    out.onBoundary.assign(3, false);
+    out.triangles.push_back({0, 1, 2});
+    return out;
+  }
+  CDT cdt;
+  insertRings(cdt, polygon, where);
+  std::vector<K::Point_2> seeds = markInside(cdt);
+  // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
+  CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(0.125, maxEdge), true);
+  return extract(cdt);
+}
+
+}  // namespace rad

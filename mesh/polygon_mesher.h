@@ -1,0 +1,40 @@
+#pragma once
+// Triangulation and quality meshing of planar polygons with holes, in the polygon's own
+// 2D frame. The CGAL implementation stays behind this header.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace rad {
+
+/// A polygon in 2D: rings[0] is the outer boundary, the rest are holes; ids[r][k] names
+/// rings[r][k] for the caller (a shared boundary point), or is -1.
+struct Polygon2 {
+  std::vector<std::vector<glm::dvec2>> rings;
+  std::vector<std::vector<int>> ids;
+};
+
+/// A triangulation of a Polygon2. Triangles are counter-clockwise; points keep the
+/// caller's ids, and points the mesher added have id -1.
+struct Triangulation2 {
+  std::vector<glm::dvec2> points;
+  std::vector<int> ids;
+  std::vector<bool> onBoundary;  ///< added points that lie on a boundary segment
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// The smallest angle Delaunay refinement guarantees away from small input angles.
+constexpr double kMeshMinAngleDeg = 20.7;
+
+/// Constrained Delaunay triangulation of the polygon, no points added.
+/// Throws InputError(where ...) if the rings cross each other or themselves.
+Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where);
+
+/// Delaunay refinement: every triangle has edges no longer than maxEdge and angles of at
+/// least kMeshMinAngleDeg wherever the input's angles allow. Boundary segments may be split;
+/// the added points are flagged onBoundary.
+Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where);
+
+}  // namespace rad

@@ -1,0 +1,21 @@
+#include "mesh/settings.h"
+
+namespace rad {
+
+Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
+  const SolverBlock& file = scene.solver;
+  auto pick = [](const auto& flag, const auto& fromFile, auto fallback) {
+    return flag ? *flag : fromFile ? *fromFile : fallback;
+  };
+  Settings s;
+  s.maxElementEdge = pick(flags.maxElementEdge, file.maxElementEdge,
+                          scene.diagonal() / kDefaultElementsPerDiagonal);
+  s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
+                        s.maxElementEdge * kDefaultPatchToElement);
+  s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, 256);
+  s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
+  s.seed = pick(flags.seed, file.seed, 1u);
+  return s;
+}
+
+}  // namespace rad

@@ -1,0 +1,26 @@
+#pragma once
+// Effective settings: command-line flags override the scene's solver block, which overrides
+// defaults relative to the scene size.
+#include "mesh/patch_mesh.h"
+#include "mesh/scene.h"
+
+namespace rad {
+
+/// Default element edge: the scene diagonal divided by this.
+constexpr double kDefaultElementsPerDiagonal = 25;
+/// Default patch edge: this many element edges.
+constexpr double kDefaultPatchToElement = 3;
+
+struct Settings {
+  double maxElementEdge = 0, maxPatchEdge = 0;
+  int hemicubeResolution = 256;
+  double tolerance = 1e-3;
+  unsigned seed = 1;
+
+  MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge}; }
+};
+
+/// Merges `flags` over `scene.solver` over the defaults.
+Settings resolveSettings(const Scene& scene, const SolverBlock& flags);
+
+}  // namespace rad

@@ -1,0 +1,27 @@
+#pragma once
+// The subcommands of the `radiosity` command line. Each registers its options on the app
+// and returns the function that runs it; errors are thrown (InputError) and reported by main.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+#include "mesh/scene.h"
+
+namespace rad::cli {
+
+/// A subcommand and the function that runs it once its options are parsed.
+struct Command {
+  CLI::App* app;
+  std::function<void()> run;
+};
+
+/// Flags shared by every command that meshes: one name each, as in the scene's solver block.
+void addMeshFlags(CLI::App& app, SolverBlock& flags);
+
+Command addInfoCommand(CLI::App& app);
+Command addMeshCommand(CLI::App& app);
+
+/// Prints the loader's and the mesher's warnings on stderr.
+void printWarnings(const std::vector<std::string>& warnings);
+
+}  // namespace rad::cli

@@ -1,0 +1,50 @@
+// radiosity: solve, inspect and mesh radiosity scenes. Exit 0 on success, 1 on bad input or
+// failure, 2 on a usage error.
+#include <iostream>
+#include <vector>
+
+#include "mesh/error.h"
+#include "radiosity/cli/commands.h"
+
+namespace rad::cli {
+
+void addMeshFlags(CLI::App& app, SolverBlock& flags) {
+  app.add_option("--max-element-edge", flags.maxElementEdge,
+                 "Longest element edge, scene units (solver.max_element_edge; default: "
+                 "scene diagonal / 25)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-patch-edge", flags.maxPatchEdge,
+                 "Widest patch (shooter), scene units (solver.max_patch_edge; default: 3 "
+                 "element edges)")
+      ->check(CLI::PositiveNumber);
+}
+
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "radiosity: warning: " << w << "\n";
+}
+
+}  // namespace rad::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
+  app.require_subcommand(1);
+  std::vector<rad::cli::Command> commands = {rad::cli::addInfoCommand(app),
+                                             rad::cli::addMeshCommand(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);  // prints help, or the usage error
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    for (const auto& command : commands)
+      if (command.app->parsed()) command.run();
+  } catch (const rad::InputError& e) {
+    std::cerr << "radiosity: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "radiosity: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,73 @@
+# The `radiosity` command line under CTest: good runs, bad input (exit 1, a message that says
+# where and what, no output file) and usage errors (exit 2).
+set(CLI $<TARGET_FILE:radiosity_cli>)
+set(DATA ${CMAKE_CURRENT_SOURCE_DIR}/data)
+set(OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
+file(MAKE_DIRECTORY ${OUT_DIR})
+
+# name, expected exit code, stderr regex, output file or "", then the arguments.
+function(cli_test name code regex output)
+  list(JOIN ARGN "|" joined)  # run_cli.cmake splits the command at "|"
+  set(args "-DCOMMAND=${CLI}|${joined}" -DEXPECT_CODE=${code} -DOUTPUT_DIR=${OUT_DIR})
+  if(NOT regex STREQUAL "")
+    list(APPEND args "-DEXPECT_STDERR=${regex}")
+  endif()
+  if(NOT output STREQUAL "")
+    list(APPEND args -DOUTPUT=${output})
+  endif()
+  add_test(NAME cli.${name}
+           COMMAND ${CMAKE_COMMAND} ${args} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_cli.cmake)
+endfunction()
+
+# Every shipped scene loads, meshes and writes.
+file(GLOB scenes ${PROJECT_SOURCE_DIR}/scenes/*.json)
+foreach(scene ${scenes})
+  get_filename_component(stem ${scene} NAME_WE)
+  cli_test(info.${stem} 0 "" "" info ${scene})
+  cli_test(mesh.${stem} 0 "wrote" ${OUT_DIR}/${stem}.ply mesh ${scene} -o ${OUT_DIR}/${stem}.ply)
+endforeach()
+cli_test(help 0 "" "" --help)
+cli_test(mesh_help 0 "" "" mesh --help)
+
+# Bad input: exit 1 with "radiosity: error: <file>: <path>: expected ..., found ...".
+# (Brackets in a CMake list item would glue items together: the patterns use '.' for them.)
+set(bad_cases
+  unparseable          "parse error at line 4, column 11"
+  unknown_top_key      "expected one of the keys version, units, .* found the unknown key \"colour\""
+  unknown_material_key "materials.white: expected one of the keys reflectance, .*found the unknown key \"reflectence\""
+  unknown_surface_key  "surfaces.0.: expected one of the keys .*found the unknown key \"twosided\""
+  missing_material     "surfaces.0.: expected a \"material\" key, found none"
+  unknown_material     "surfaces.0..material: expected a material defined in \"materials\" .white, lamp., found the string \"marble\""
+  reflectance_one      "materials.white.reflectance.1.: expected a reflectance in .0, 1., found the number 1.0"
+  negative_emission    "materials.lamp.emission.1.: expected a finite emission >= 0, found the number -1"
+  infinite_emission    "line [0-9]+, column [0-9]+: expected finite numbers, found '1e999'"
+  nan_coordinate       "line 30, column 6: expected finite numbers, found '1e999'"
+  two_vertices         "surfaces.0..polygon: expected at least 3 vertices .x, y, z., found an array of 2 items"
+  zero_area            "surfaces.0..polygon: expected a polygon of non-zero area, found area 0"
+  hole_outside         "surfaces.0..holes.0..0.: expected a hole vertex inside its polygon, found a point outside it"
+  missing_mesh_file    "surfaces.2..mesh: expected a readable mesh file, found no file at .*no_such_statue.obj"
+  unparseable_mesh_file "surfaces.2..mesh: .*broken.off: expected a mesh file with faces, found none that parse"
+  version_two          "version: expected version 1, found the number 2"
+  bad_light_type       "lights.0..type: expected \"directional\", \"point\" or \"spot\", found the string \"area\""
+  bad_fog_mode         "fog.mode: expected \"linear\", \"exp\" or \"exp2\", found the string \"thick\""
+  bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\"")
+while(bad_cases)
+  list(POP_FRONT bad_cases case regex)
+  cli_test(bad.${case} 1 "radiosity: error: .*${case}.json: ${regex}" ${OUT_DIR}/${case}.ply
+           mesh ${DATA}/bad/${case}.json -o ${OUT_DIR}/${case}.ply)
+  cli_test(bad_info.${case} 1 "radiosity: error: " "" info ${DATA}/bad/${case}.json)
+endwhile()
+cli_test(bad.missing_scene 1 "radiosity: error: .*nowhere.json: expected a readable scene file, found no such file"
+         ${OUT_DIR}/nowhere.ply mesh ${DATA}/nowhere.json -o ${OUT_DIR}/nowhere.ply)
+cli_test(bad.output_folder 1 "radiosity: error: .*no_such_folder/out.ply: expected an output file in an existing folder"
+         "" mesh ${DATA}/good_small.json -o ${OUT_DIR}/no_such_folder/out.ply)
+
+# Usage errors: exit 2, no output.
+cli_test(usage.unknown_flag 2 "--frobnicate" ${OUT_DIR}/usage1.ply
+         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage1.ply --frobnicate)
+cli_test(usage.missing_output 2 "output" "" mesh ${DATA}/good_small.json)
+cli_test(usage.missing_value 2 "max-element-edge" ${OUT_DIR}/usage2.ply
+         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage2.ply --max-element-edge)
+cli_test(usage.negative_edge 2 "max-element-edge" ${OUT_DIR}/usage3.ply
+         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage3.ply --max-element-edge -1)
+cli_test(usage.no_command 2 "" "")
