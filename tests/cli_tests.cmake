@@ -71,3 +71,18 @@ cli_test(usage.missing_value 2 "max-element-edge" ${OUT_DIR}/usage2.ply
 cli_test(usage.negative_edge 2 "max-element-edge" ${OUT_DIR}/usage3.ply
          mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage3.ply --max-element-edge -1)
 cli_test(usage.no_command 2 "" "")
+
+# formfactors: JSON on stdout; bad surface names are bad input, missing choices usage errors.
+add_test(NAME cli.formfactors.from_light
+         COMMAND ${CMAKE_COMMAND} "-DCOMMAND=${CLI}|formfactors|${PROJECT_SOURCE_DIR}/scenes/cornell_empty.json|--from|light|--hemicube|64"
+                 -DEXPECT_CODE=0 "-DEXPECT_STDOUT=\"from\": \"light\".*\"sky\": 0\\.1[0-9]+.*\"name\": \"floor\",.*\"exact\": 0\\.24"
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/run_cli.cmake)
+cli_test(formfactors.point 0 "" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0.5,0,0.5 --normal 0,1,0)
+cli_test(bad.formfactors_surface 1 "radiosity: error: --from: expected the name of a surface of .*found \"nope\""
+         "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --from nope)
+cli_test(bad.formfactors_normal 1 "radiosity: error: --normal: expected a non-zero finite vector"
+         "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0.5,0,0.5 --normal 0,0,0)
+cli_test(usage.formfactors_nothing 2 "--from or --point" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json)
+cli_test(usage.formfactors_both 2 "excludes" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --from floor --point 0,0,0 --normal 0,1,0)
+cli_test(usage.formfactors_odd_hemicube 2 "even" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --from floor --hemicube 65)
+cli_test(usage.formfactors_point_without_normal 2 "normal" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0,0,0)

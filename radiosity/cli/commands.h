@@ -20,6 +20,7 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags);
 
 Command addInfoCommand(CLI::App& app);
 Command addMeshCommand(CLI::App& app);
+Command addFormFactorsCommand(CLI::App& app);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

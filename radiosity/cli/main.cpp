@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
   app.require_subcommand(1);
   std::vector<rad::cli::Command> commands = {rad::cli::addInfoCommand(app),
-                                             rad::cli::addMeshCommand(app)};
+                                             rad::cli::addMeshCommand(app),
+                                             rad::cli::addFormFactorsCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,699 @@
+// The raster core. One pipeline (outcodes -> homogeneous clipping -> snapping -> edge-function
+// rasterisation), instantiated for the item+depth fast path and for the generic path.
+#include "display/raster.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#if defined(__SSE2__) && !defined(RASTER_NO_SIMD)
+#include <emmintrin.h>
+#define RASTER_SSE2 1
+#else
+#define RASTER_SSE2 0
+#endif
+
+namespace raster {
+namespace {
+
+constexpr int32_t kOne = 1 << kSubpixelBits;  // one pixel in fixed point
+constexpr int32_t kHalf = kOne / 2;           // pixel centre offset
+// Guard band: window coordinates are kept within +-kGuardPixels, so snapped coordinates fit in
+// 24 bits, edge-function coefficients in 25 bits and edge values (2 products) in 50 bits.
+constexpr float kGuardPixels = 32768.0f - 256.0f;
+static_assert(kGuardPixels >= 1.5f * kMaxSize, "guard band must contain the viewport with margin");
+
+// Outcode bits. Bits 0-3: outside the viewport's left/right/bottom/top planes (used for the
+// trivial reject only). Bits 4-9: the clipping planes (near, far, guard band left/right/bottom/
+// top), in the order clipped.
+constexpr int kPlaneCount = 6;
+constexpr int kFirstPlaneBit = 4;
+constexpr uint32_t kClipBits = 0x3Fu << kFirstPlaneBit;
+constexpr uint32_t kGenerated = 0xFFFFFFFFu;  // CVert::src of a vertex made by clipping
+constexpr int kMaxPoly = 16;                  // convex triangle clipped by 6 planes: <= 9
+
+// Per-draw constants of the NDC -> window mapping.
+struct Frame {
+  float halfW, halfH;  // window = (ndc + 1) * half
+  float gx, gy;        // guard band half-extent in NDC units
+  float nearW;         // near plane z >= -nearW*w: 1 for OpenGL's [-1, 1], 0 for [0, 1]
+  float zScale, zBias; // depth = z_ndc * zScale + zBias
+};
+
+// Signed distance of v to clipping plane p (0 near, 1 far, 2-5 guard left/right/bottom/top);
+// inside iff >= 0. The outcodes and the clipper both use it, so they always agree.
+inline float planeDist(const glm::vec4& v, int p, const Frame& f) {
+  switch (p) {
+    case 0: return v.z + f.nearW * v.w;
+    case 1: return v.w - v.z;
+    case 2: return v.x + f.gx * v.w;
+    case 3: return f.gx * v.w - v.x;
+    case 4: return v.y + f.gy * v.w;
+    default: return f.gy * v.w - v.y;
+  }
+}
+
+// Outcode of a clip-space vertex; NaN coordinates set bits (they end up clipped away).
+inline uint32_t outcode(const glm::vec4& v, const Frame& f) {
+  uint32_t c = uint32_t(!(v.x + v.w >= 0.0f)) | uint32_t(!(v.w - v.x >= 0.0f)) << 1 |
+               uint32_t(!(v.y + v.w >= 0.0f)) << 2 | uint32_t(!(v.w - v.y >= 0.0f)) << 3;
+  // w <= 0 with z inside [-w, w] is only the zero vector: flag it so it is never projected.
+  c |= uint32_t(!(planeDist(v, 0, f) >= 0.0f) || !(v.w > 0.0f)) << kFirstPlaneBit;
+  for (int p = 1; p < kPlaneCount; ++p)
+    c |= uint32_t(!(planeDist(v, p, f) >= 0.0f)) << (kFirstPlaneBit + p);
+  return c;
+}
+
+// Clip space -> (x_w, y_w, depth, 1/w).
+inline glm::vec4 project(const glm::vec4& v, const Frame& f) {
+  const float q = 1.0f / v.w;
+  return glm::vec4((v.x * q + 1.0f) * f.halfW, (v.y * q + 1.0f) * f.halfH,
+                   v.z * q * f.zScale + f.zBias, q);
+}
+
+// Window coordinate -> fixed point, rounded to nearest even like cvtps2dq in vertexStage
+// (|x| <= kGuardPixels + small, so the result fits easily).
+inline int32_t toFixed(float x) {
+#if RASTER_SSE2
+  return _mm_cvtss_si32(_mm_set_ss(x * float(kOne)));
+#else
+  return static_cast<int32_t>(std::lrint(x * float(kOne)));
+#endif
+}
+
+// Vertex stage: outcode and window coordinates of every vertex (garbage window coordinates
+// where clipping bits are set; they are never used). The SSE2 version does exactly the same
+// IEEE operations as outcode() and project(), so both agree bit for bit with the clipper.
+void vertexStage(const glm::vec4* clip, size_t n, const Frame& f, glm::vec4* win, glm::ivec2* fixed,
+                 uint16_t* codes) {
+  size_t v = 0;
+#if RASTER_SSE2
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 gx = _mm_set1_ps(f.gx), gy = _mm_set1_ps(f.gy);
+  const __m128 hw = _mm_set1_ps(f.halfW), hh = _mm_set1_ps(f.halfH);
+  const __m128 fixedScale = _mm_set1_ps(float(kOne));
+  // Bit k of the code where distance d is not >= 0 (NaN included).
+  auto bit = [&](__m128 d, int k) {
+    return _mm_and_si128(_mm_castps_si128(_mm_cmpnge_ps(d, zero)), _mm_set1_epi32(1 << k));
+  };
+  for (; v + 4 <= n; v += 4) {
+    __m128 x = _mm_loadu_ps(&clip[v].x), y = _mm_loadu_ps(&clip[v + 1].x);
+    __m128 z = _mm_loadu_ps(&clip[v + 2].x), w = _mm_loadu_ps(&clip[v + 3].x);
+    _MM_TRANSPOSE4_PS(x, y, z, w);
+    const __m128 gxw = _mm_mul_ps(gx, w), gyw = _mm_mul_ps(gy, w);
+    __m128i c = _mm_or_si128(bit(_mm_add_ps(x, w), 0), bit(_mm_sub_ps(w, x), 1));
+    c = _mm_or_si128(c, _mm_or_si128(bit(_mm_add_ps(y, w), 2), bit(_mm_sub_ps(w, y), 3)));
+    const __m128i nearOut = _mm_or_si128(_mm_castps_si128(_mm_cmpnge_ps(_mm_add_ps(z, _mm_mul_ps(_mm_set1_ps(f.nearW), w)), zero)),
+                                         _mm_castps_si128(_mm_cmpngt_ps(w, zero)));
+    c = _mm_or_si128(c, _mm_and_si128(nearOut, _mm_set1_epi32(1 << kFirstPlaneBit)));
+    c = _mm_or_si128(c, bit(_mm_sub_ps(w, z), kFirstPlaneBit + 1));
+    c = _mm_or_si128(c, bit(_mm_add_ps(x, gxw), kFirstPlaneBit + 2));
+    c = _mm_or_si128(c, bit(_mm_sub_ps(gxw, x), kFirstPlaneBit + 3));
+    c = _mm_or_si128(c, bit(_mm_add_ps(y, gyw), kFirstPlaneBit + 4));
+    c = _mm_or_si128(c, bit(_mm_sub_ps(gyw, y), kFirstPlaneBit + 5));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(codes + v), _mm_packs_epi32(c, c));
+    const __m128 q = _mm_div_ps(one, w);
+    __m128 wx = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(x, q), one), hw);
+    __m128 wy = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(y, q), one), hh);
+    __m128 wz = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(z, q), _mm_set1_ps(f.zScale)),
+                           _mm_set1_ps(f.zBias));
+    __m128 wq = q;
+    const __m128i fx = _mm_cvtps_epi32(_mm_mul_ps(wx, fixedScale));
+    const __m128i fy = _mm_cvtps_epi32(_mm_mul_ps(wy, fixedScale));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&fixed[v]), _mm_unpacklo_epi32(fx, fy));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&fixed[v + 2]), _mm_unpackhi_epi32(fx, fy));
+    _MM_TRANSPOSE4_PS(wx, wy, wz, wq);
+    _mm_storeu_ps(&win[v].x, wx);
+    _mm_storeu_ps(&win[v + 1].x, wy);
+    _mm_storeu_ps(&win[v + 2].x, wz);
+    _mm_storeu_ps(&win[v + 3].x, wq);
+  }
+#endif
+  for (; v < n; ++v) {
+    codes[v] = uint16_t(outcode(clip[v], f));
+    win[v] = project(clip[v], f);
+    fixed[v] = (codes[v] & kClipBits) ? glm::ivec2(0) : glm::ivec2(toFixed(win[v].x), toFixed(win[v].y));
+  }
+}
+
+
+// A vertex ready for triangle setup.
+struct SVert {
+  int32_t X, Y;            // snapped window position
+  float x, y, z, q;        // exact window position, depth, 1/w
+  const glm::vec4* color;  // per-vertex colour (smooth shading only)
+};
+
+inline SVert makeSVert(const glm::vec4& win, const glm::vec4* color) {
+  return SVert{toFixed(win.x), toFixed(win.y), win.x, win.y, win.z, win.w, color};
+}
+inline SVert makeSVert(const glm::vec4& win, const glm::ivec2& fixed, const glm::vec4* color) {
+  return SVert{fixed.x, fixed.y, win.x, win.y, win.z, win.w, color};
+}
+
+// Twice the signed area in fixed point (> 0: counter-clockwise in the y-up window).
+inline int64_t area2(const SVert& a, const SVert& b, const SVert& c) {
+  return (int64_t(b.X) - a.X) * (int64_t(c.Y) - a.Y) - (int64_t(c.X) - a.X) * (int64_t(b.Y) - a.Y);
+}
+
+// Per-draw output pointers and state, plus the current triangle's constants.
+struct Ctx {
+  float* depth;
+  uint32_t* item;      // null: not written
+  glm::vec4* color;    // null: not written
+  uint32_t* hits;      // null: not counted
+  int width;
+  int x0, y0, x1, y1;  // inclusive pixel range (viewport & scissor)
+  bool cullBack, depthTest, depthWrite;
+  uint32_t id;         // current triangle's item id
+  glm::vec4 flat;      // current triangle's flat colour
+};
+
+// Gradient of an attribute with values a0,a1,a2 at the vertices of a window-space triangle.
+struct Plane {
+  double x10, y10, x20, y20, inv;
+  void gradient(double a0, double a1, double a2, double& gx, double& gy) const {
+    const double a10 = a1 - a0, a20 = a2 - a0;
+    gx = (a10 * y20 - a20 * y10) * inv;
+    gy = (a20 * x10 - a10 * x20) * inv;
+  }
+};
+
+// Depth clamp to [0, 1], written to match SSE maxps/minps bit for bit.
+inline float clampDepth(float z) {
+  z = z > 0.0f ? z : 0.0f;
+  return z < 1.0f ? z : 1.0f;
+}
+
+// Branch-free min/max (GCC tends to emit unpredictable branches for std::min/max here).
+inline int64_t min64(int64_t a, int64_t b) {  // |a - b| < 2^63
+  const int64_t d = b - a;
+  return a + (d & (d >> 63));
+}
+inline int64_t max64(int64_t a, int64_t b) {
+  const int64_t d = b - a;
+  return b - (d & (d >> 63));
+}
+
+#if RASTER_SSE2
+// Lane masks of a 4-bit coverage mask.
+struct LaneMasks {
+  alignas(16) uint32_t m[16][4];
+  constexpr LaneMasks() : m() {
+    for (int i = 0; i < 16; ++i)
+      for (int l = 0; l < 4; ++l) m[i][l] = (i >> l) & 1 ? 0xFFFFFFFFu : 0u;
+  }
+};
+constexpr LaneMasks kLaneMasks;
+#endif
+
+// Rasterises a counter-clockwise snapped triangle (area = area2(v0,v1,v2) > 0). Each row of the
+// bounding box is walked in chunks of 4 pixels, stepping the 64-bit edge functions
+// incrementally: the sign bits of E0|E1|E2 give the chunk's coverage mask (exact integer test).
+// The item+depth fast path blends every chunk of the row with SSE2, whatever its mask: with the
+// small triangles of item buffers, branching on coverage costs more in mispredictions than the
+// few extra blends. The generic path skips empty chunks and stops after the row's span (a
+// convex triangle covers a single span per row), then shades the covered pixels one by one.
+// Without SSE2 the same masks are computed with scalar code (bit-identical results).
+template <bool Fast, Shade S, bool Greater>
+void rasterTriangle(const Ctx& c, const SVert& v0, const SVert& v1, const SVert& v2, int64_t area) {
+  // Pixels whose centres lie in the snapped bounding box, clamped to viewport and scissor.
+  const int64_t minX = min64(v0.X, min64(v1.X, v2.X)), maxX = max64(v0.X, max64(v1.X, v2.X));
+  const int64_t minY = min64(v0.Y, min64(v1.Y, v2.Y)), maxY = max64(v0.Y, max64(v1.Y, v2.Y));
+  const int ix0 = int(max64(c.x0, (minX - kHalf + kOne - 1) >> kSubpixelBits));
+  const int ix1 = int(min64(c.x1, (maxX - kHalf) >> kSubpixelBits));
+  const int iy0 = int(max64(c.y0, (minY - kHalf + kOne - 1) >> kSubpixelBits));
+  const int iy1 = int(min64(c.y1, (maxY - kHalf) >> kSubpixelBits));
+  if (ix0 > ix1 || iy0 > iy1) return;
+
+  // Edge functions at the centre of pixel (ix0, iy0), E = A*(px-Xa) + B*(py-Ya), > 0 inside.
+  // Edge k is opposite vertex k. Biased by -1 unless top-left, so "inside" is simply E >= 0,
+  // i.e. the sign bit of (E0 | E1 | E2) is clear.
+  const int64_t px = int64_t(ix0) * kOne + kHalf, py = int64_t(iy0) * kOne + kHalf;
+  const SVert* ea[3] = {&v1, &v2, &v0};
+  const SVert* eb[3] = {&v2, &v0, &v1};
+  int64_t sx[3], sy[3], e0[3];
+  for (int k = 0; k < 3; ++k) {
+    const int64_t A = int64_t(ea[k]->Y) - eb[k]->Y, B = int64_t(eb[k]->X) - ea[k]->X;
+    const int64_t topLeft = (A > 0) | ((A == 0) & (B < 0));
+    sx[k] = A * kOne;
+    sy[k] = B * kOne;
+    e0[k] = A * (px - ea[k]->X) + B * (py - ea[k]->Y) - (1 - topLeft);
+  }
+
+  // Attribute planes from the exact (unsnapped) positions; snapped ones if those degenerate.
+  Plane pl{double(v1.x) - v0.x, double(v1.y) - v0.y, double(v2.x) - v0.x, double(v2.y) - v0.y, 0};
+  double det = pl.x10 * pl.y20 - pl.x20 * pl.y10;
+  if (!(det > 0.0)) {
+    const double s = 1.0 / kOne;
+    pl = Plane{(v1.X - v0.X) * s, (v1.Y - v0.Y) * s, (v2.X - v0.X) * s, (v2.Y - v0.Y) * s, 0};
+    det = double(area) * s * s;
+  }
+  pl.inv = 1.0 / det;
+  const double cx = ix0 + 0.5 - v0.x, cy = iy0 + 0.5 - v0.y;  // centre of (ix0, iy0) rel. v0
+  double dzdx, dzdy;
+  pl.gradient(v0.z, v1.z, v2.z, dzdx, dzdy);
+  const double z00 = v0.z + dzdx * cx + dzdy * cy;
+  const float fdzdx = float(dzdx);
+
+  // Smooth shading: q = 1/w and s_k = lambda_k/w are affine in window space.
+  double qx = 0, qy = 0, ax = 0, ay = 0, bx = 0, by = 0, q00 = 0, a00 = 0, b00 = 0;
+  glm::vec4 c0(0.0f), c10(0.0f), c20(0.0f);
+  if constexpr (S == Shade::Smooth) {
+    pl.gradient(v0.q, v1.q, v2.q, qx, qy);
+    pl.gradient(0.0, v1.q, 0.0, ax, ay);
+    pl.gradient(0.0, 0.0, v2.q, bx, by);
+    q00 = v0.q + qx * cx + qy * cy;
+    a00 = ax * cx + ay * cy;
+    b00 = bx * cx + by * cy;
+    c0 = *v0.color;
+    c10 = *v1.color - c0;
+    c20 = *v2.color - c0;
+  }
+
+  // Locals, so that stores to the buffers cannot be assumed to alias the context.
+  float* const depth = c.depth;
+  uint32_t* const item = c.item;
+  glm::vec4* const color = c.color;
+  uint32_t* const hits = c.hits;
+  const uint32_t id = c.id;
+  const bool depthTest = c.depthTest, depthWrite = c.depthWrite;
+  const int width = c.width;
+
+  // Depth test: LESS, or GREATER for reversed depth.
+  auto passes = [](float z, float stored) { return Greater ? stored < z : z < stored; };
+
+  // One fragment at offset k = i - ix0 of row offset dj, buffer index idx.
+  auto fragment = [&](size_t idx, float z, float fk, double dj) {
+    if constexpr (Fast) {
+      if (passes(z, depth[idx])) {
+        depth[idx] = z;
+        item[idx] = id;
+      }
+    } else {
+      if (depthTest) {
+        if (!passes(z, depth[idx])) return;
+        if (depthWrite) depth[idx] = z;
+      }
+      if (item) item[idx] = id;
+      if constexpr (S == Shade::Flat) {
+        color[idx] = c.flat;
+      } else if constexpr (S == Shade::Smooth) {
+        const double q = q00 + qx * fk + qy * dj;
+        const double la = (a00 + ax * fk + ay * dj) / q, lb = (b00 + bx * fk + by * dj) / q;
+        color[idx] = c0 + float(la) * c10 + float(lb) * c20;
+      }
+      if (hits) ++hits[idx];
+    }
+  };
+
+#if RASTER_SSE2
+  // Edge k's values at lanes 0,1 (lo) and 2,3 (hi) of a chunk; per-row and per-chunk steps.
+  // (Spelled out per edge so that they stay in registers even at -O2.)
+  auto lanesLo = [&](int k) { return _mm_set_epi64x(e0[k] + sx[k], e0[k]); };
+  auto lanesHi = [&](int k) { return _mm_set_epi64x(e0[k] + 3 * sx[k], e0[k] + 2 * sx[k]); };
+  __m128i r0Lo = lanesLo(0), r1Lo = lanesLo(1), r2Lo = lanesLo(2);
+  __m128i r0Hi = lanesHi(0), r1Hi = lanesHi(1), r2Hi = lanesHi(2);
+  const __m128i y0 = _mm_set1_epi64x(sy[0]), y1 = _mm_set1_epi64x(sy[1]), y2 = _mm_set1_epi64x(sy[2]);
+  const __m128i x0 = _mm_set1_epi64x(4 * sx[0]), x1 = _mm_set1_epi64x(4 * sx[1]);
+  const __m128i x2 = _mm_set1_epi64x(4 * sx[2]);
+  const __m128 dz4 = _mm_set1_ps(fdzdx), zero4 = _mm_setzero_ps(), one4 = _mm_set1_ps(1.0f);
+  const __m128 four4 = _mm_set1_ps(4.0f), lanes4 = _mm_set_ps(3.0f, 2.0f, 1.0f, 0.0f);
+  const __m128i idv = _mm_set1_epi32(int(id));
+#else
+  int64_t row[3] = {e0[0], e0[1], e0[2]};
+#endif
+
+  size_t rowBase = size_t(iy0) * size_t(width) + size_t(ix0);
+  for (int j = iy0; j <= iy1; ++j, rowBase += size_t(width)) {
+    const double dj = j - iy0;
+    const float zr = float(z00 + dzdy * dj);  // depth at pixel ix0 of this row
+    bool seen = false;
+#if RASTER_SSE2
+    __m128i e0Lo = r0Lo, e1Lo = r1Lo, e2Lo = r2Lo, e0Hi = r0Hi, e1Hi = r1Hi, e2Hi = r2Hi;
+    r0Lo = _mm_add_epi64(r0Lo, y0), r1Lo = _mm_add_epi64(r1Lo, y1), r2Lo = _mm_add_epi64(r2Lo, y2);
+    r0Hi = _mm_add_epi64(r0Hi, y0), r1Hi = _mm_add_epi64(r1Hi, y1), r2Hi = _mm_add_epi64(r2Hi, y2);
+    const __m128 zr4 = _mm_set1_ps(zr);
+    __m128 fk4 = lanes4;
+#else
+    int64_t e[3] = {row[0], row[1], row[2]};
+    row[0] += sy[0], row[1] += sy[1], row[2] += sy[2];
+#endif
+    for (int i = ix0; i <= ix1; i += 4) {
+      const int valid = 0xF >> int(max64(0, i + 3 - ix1));  // lanes up to ix1
+#if RASTER_SSE2
+      // Sign bits of E0|E1|E2 of the 4 pixels = the outside ones.
+      const __m128i oLo = _mm_or_si128(_mm_or_si128(e0Lo, e1Lo), e2Lo);
+      const __m128i oHi = _mm_or_si128(_mm_or_si128(e0Hi, e1Hi), e2Hi);
+      const int out = _mm_movemask_pd(_mm_castsi128_pd(oLo)) | _mm_movemask_pd(_mm_castsi128_pd(oHi)) << 2;
+      const int mask = ~out & valid;
+      e0Lo = _mm_add_epi64(e0Lo, x0), e1Lo = _mm_add_epi64(e1Lo, x1), e2Lo = _mm_add_epi64(e2Lo, x2);
+      e0Hi = _mm_add_epi64(e0Hi, x0), e1Hi = _mm_add_epi64(e1Hi, x1), e2Hi = _mm_add_epi64(e2Hi, x2);
+      const __m128 fk = fk4;
+      fk4 = _mm_add_ps(fk4, four4);
+      if (!Fast && !mask) {
+        if (seen) break;
+        continue;
+      }
+      seen = true;
+      const __m128 z = _mm_min_ps(_mm_max_ps(_mm_add_ps(zr4, _mm_mul_ps(dz4, fk)), zero4), one4);
+      if constexpr (Fast) {
+        if (i + 3 < width) {  // blend the 4 pixels at once
+          float* d = depth + rowBase + size_t(i - ix0);
+          uint32_t* it = item + rowBase + size_t(i - ix0);
+          const __m128 dOld = _mm_loadu_ps(d);
+          const __m128 pass = _mm_and_ps(Greater ? _mm_cmplt_ps(dOld, z) : _mm_cmplt_ps(z, dOld),
+                                         _mm_load_ps(reinterpret_cast<const float*>(kLaneMasks.m[mask])));
+          _mm_storeu_ps(d, _mm_or_ps(_mm_and_ps(pass, z), _mm_andnot_ps(pass, dOld)));
+          const __m128i p = _mm_castps_si128(pass);
+          const __m128i iOld = _mm_loadu_si128(reinterpret_cast<const __m128i*>(it));
+          _mm_storeu_si128(reinterpret_cast<__m128i*>(it),
+                           _mm_or_si128(_mm_and_si128(p, idv), _mm_andnot_si128(p, iOld)));
+          continue;
+        }
+      }
+      alignas(16) float zs[4];
+      _mm_store_ps(zs, z);
+#else
+      int mask = 0;
+      float zs[4];
+      for (int l = 0; l < 4; ++l) {
+        mask |= int((e[0] | e[1] | e[2]) >= 0) << l;
+        zs[l] = clampDepth(zr + fdzdx * float(i + l - ix0));
+        e[0] += sx[0], e[1] += sx[1], e[2] += sx[2];
+      }
+      mask &= valid;
+      if (!mask) {
+        if (seen) break;
+        continue;
+      }
+      seen = true;
+#endif
+      for (int m = mask; m; m &= m - 1) {
+        const int l = __builtin_ctz(unsigned(m));
+        fragment(rowBase + size_t(i - ix0 + l), zs[l], float(i - ix0 + l), dj);
+      }
+    }
+  }
+}
+
+// Orients (or culls) a snapped triangle and rasterises it.
+template <bool Fast, Shade S, bool Greater>
+inline void drawSnapped(const Ctx& c, const SVert& v0, const SVert& v1, const SVert& v2) {
+  const int64_t a = area2(v0, v1, v2);
+  if (a > 0)
+    rasterTriangle<Fast, S, Greater>(c, v0, v1, v2, a);
+  else if (a < 0 && !c.cullBack)
+    rasterTriangle<Fast, S, Greater>(c, v0, v2, v1, -a);
+}
+
+// A polygon vertex during clipping.
+struct CVert {
+  glm::vec4 pos;
+  glm::vec4 col;
+  uint32_t src;  // original vertex index, or kGenerated
+};
+
+// Intersection of edge (in, out) with plane p. Always computed from the inside vertex, so an
+// edge shared by two triangles is cut at bit-identical points whatever its direction.
+inline CVert intersect(const CVert& in, float din, const CVert& out, float dout, int p,
+                       const Frame& f) {
+  const float t = din / (din - dout);
+  CVert r;
+  r.pos = in.pos + t * (out.pos - in.pos);
+  r.col = in.col + t * (out.col - in.col);
+  r.src = kGenerated;
+  switch (p) {  // put the vertex exactly on the plane
+    case 0: r.pos.z = -(f.nearW * r.pos.w); break;
+    case 1: r.pos.z = r.pos.w; break;
+    case 2: r.pos.x = -(f.gx * r.pos.w); break;
+    case 3: r.pos.x = f.gx * r.pos.w; break;
+    case 4: r.pos.y = -(f.gy * r.pos.w); break;
+    default: r.pos.y = f.gy * r.pos.w; break;
+  }
+  return r;
+}
+
+// Clips triangle (a, b, c) against near, far and guard-band planes and draws the fan.
+template <bool Fast, Shade S, bool Greater>
+void clipAndDraw(const Ctx& c, const Frame& f, const glm::vec4* clip, const glm::vec4* win,
+                 const glm::ivec2* fixed, const uint16_t* codes, const glm::vec4* colors,
+                 const uint32_t (&vi)[3]) {
+  CVert bufA[kMaxPoly], bufB[kMaxPoly];
+  CVert* poly = bufA;
+  CVert* next = bufB;
+  int n = 3;
+  for (int k = 0; k < 3; ++k) {
+    poly[k].pos = clip[vi[k]];
+    poly[k].col = (S == Shade::Smooth) ? colors[vi[k]] : glm::vec4(0.0f);
+    poly[k].src = vi[k];
+  }
+  // Every plane is tested (not only those flagged by the triangle's outcodes) so that adjacent
+  // triangles cut their shared edge identically even after rounding in earlier planes.
+  for (int p = 0; p < kPlaneCount; ++p) {
+    float d[kMaxPoly];
+    bool anyOut = false;
+    for (int k = 0; k < n; ++k) {
+      d[k] = planeDist(poly[k].pos, p, f);
+      anyOut |= !(d[k] >= 0.0f);
+    }
+    if (!anyOut) continue;
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+      const int k1 = k + 1 == n ? 0 : k + 1;
+      const bool in0 = d[k] >= 0.0f, in1 = d[k1] >= 0.0f;
+      if (m + 2 > kMaxPoly) return;  // impossible for finite input
+      if (in0) next[m++] = poly[k];
+      if (in0 != in1)
+        next[m++] = in0 ? intersect(poly[k], d[k], poly[k1], d[k1], p, f)
+                        : intersect(poly[k1], d[k1], poly[k], d[k], p, f);
+    }
+    std::swap(poly, next);
+    n = m;
+    if (n < 3) return;
+  }
+
+  // Original vertices that survived use the vertex stage's values, exactly as the unclipped
+  // triangles sharing them do (the outcodes and the clipper agree on inside/outside).
+  SVert sv[kMaxPoly];
+  for (int k = 0; k < n; ++k) {
+    const uint32_t s = poly[k].src;
+    if (s != kGenerated && !(codes[s] & kClipBits)) {
+      sv[k] = makeSVert(win[s], fixed[s], &poly[k].col);
+      continue;
+    }
+    const glm::vec4 w = project(poly[k].pos, f);
+    const float lim = kGuardPixels + 1.0f;
+    if (!(std::fabs(w.x) <= lim && std::fabs(w.y) <= lim && std::fabs(w.z) <= 2.0f && w.w > 0.0f &&
+          w.w <= FLT_MAX))
+      return;  // NaN input, or the zero vector as a vertex
+    sv[k] = makeSVert(w, &poly[k].col);
+  }
+  // Fan from vertex 0; the polygon's orientation decides culling, and fan slivers whose
+  // orientation flipped through snapping are dropped.
+  int64_t fan[kMaxPoly];
+  int64_t total = 0;
+  for (int k = 1; k + 1 < n; ++k) total += fan[k] = area2(sv[0], sv[k], sv[k + 1]);
+  if (total == 0 || (total < 0 && c.cullBack)) return;
+  for (int k = 1; k + 1 < n; ++k) {
+    if (total > 0 && fan[k] > 0)
+      rasterTriangle<Fast, S, Greater>(c, sv[0], sv[k], sv[k + 1], fan[k]);
+    else if (total < 0 && fan[k] < 0)
+      rasterTriangle<Fast, S, Greater>(c, sv[0], sv[k + 1], sv[k], -fan[k]);
+  }
+}
+
+// Fills n 32-bit words (vectorised by hand: -O2 does not vectorise std::fill of a float).
+void fill32(uint32_t* p, size_t n, uint32_t value) {
+  size_t i = 0;
+#if RASTER_SSE2
+  const __m128i v = _mm_set1_epi32(int(value));
+  for (; i + 16 <= n; i += 16) {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), v);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i + 4), v);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i + 8), v);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i + 12), v);
+  }
+#endif
+  for (; i < n; ++i) p[i] = value;
+}
+
+// Largest of n indices.
+uint32_t maxIndex(const uint32_t* idx, size_t n) {
+  uint32_t m = 0;
+  size_t i = 0;
+#if RASTER_SSE2
+  // Unsigned max through signed compares of values offset by 2^31.
+  const __m128i flip = _mm_set1_epi32(int(0x80000000u));
+  __m128i mv = flip;  // = 0 offset
+  for (; i + 4 <= n; i += 4) {
+    const __m128i x = _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(idx + i)), flip);
+    const __m128i gt = _mm_cmpgt_epi32(x, mv);
+    mv = _mm_or_si128(_mm_and_si128(gt, x), _mm_andnot_si128(gt, mv));
+  }
+  alignas(16) uint32_t lanes[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(lanes), _mm_xor_si128(mv, flip));
+  m = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+#endif
+  for (; i < n; ++i) m = std::max(m, idx[i]);
+  return m;
+}
+
+// The triangle loop: trivial reject, fast unclipped setup or clipping.
+template <bool Fast, Shade S, bool Greater>
+void drawAll(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* indices,
+             size_t triangleCount, const uint32_t* ids, const glm::vec4* colors,
+             const glm::vec4* win, const glm::ivec2* fixed, const uint16_t* codes) {
+  for (size_t t = 0; t < triangleCount; ++t) {
+    uint32_t vi[3];
+    if (indices) {
+      vi[0] = indices[3 * t], vi[1] = indices[3 * t + 1], vi[2] = indices[3 * t + 2];
+    } else {
+      vi[0] = uint32_t(3 * t), vi[1] = uint32_t(3 * t + 1), vi[2] = uint32_t(3 * t + 2);
+    }
+    const uint32_t o0 = codes[vi[0]], o1 = codes[vi[1]], o2 = codes[vi[2]];
+    if (o0 & o1 & o2) continue;  // entirely outside one plane
+    c.id = ids ? ids[t] : uint32_t(t);
+    if constexpr (S == Shade::Flat) c.flat = colors[vi[2]];  // provoking vertex: the last
+    if (((o0 | o1 | o2) & kClipBits) == 0) {
+      const bool sm = S == Shade::Smooth;
+      drawSnapped<Fast, S, Greater>(c, makeSVert(win[vi[0]], fixed[vi[0]], sm ? colors + vi[0] : nullptr),
+                           makeSVert(win[vi[1]], fixed[vi[1]], sm ? colors + vi[1] : nullptr),
+                           makeSVert(win[vi[2]], fixed[vi[2]], sm ? colors + vi[2] : nullptr));
+    } else {
+      clipAndDraw<Fast, S, Greater>(c, f, clip, win, fixed, codes, colors, vi);
+    }
+  }
+}
+
+// Picks the instantiation of the pipeline for the path, the shading and the depth function.
+template <bool Greater>
+void dispatch(bool fast, Shade shade, Ctx& c, const Frame& f, const glm::vec4* clip,
+              const uint32_t* indices, size_t count, const uint32_t* ids, const glm::vec4* colors,
+              const glm::vec4* win, const glm::ivec2* fixed, const uint16_t* codes) {
+  if (fast)
+    drawAll<true, Shade::None, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
+  else if (shade == Shade::None)
+    drawAll<false, Shade::None, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
+  else if (shade == Shade::Flat)
+    drawAll<false, Shade::Flat, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
+  else
+    drawAll<false, Shade::Smooth, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
+}
+
+}  // namespace
+
+Target::Target(int w, int h, bool withItem, bool withColor) {
+  if (withItem) item.resize(1);
+  if (withColor) color.resize(1);
+  resize(w, h);
+}
+
+void Target::resize(int w, int h) {
+  if (w < 1 || h < 1 || w > kMaxSize || h > kMaxSize)
+    throw std::invalid_argument("raster::Target: size must be within 1..kMaxSize");
+  width = w;
+  height = h;
+  const size_t n = size_t(w) * size_t(h);
+  depth.assign(n, 1.0f);
+  if (!item.empty()) item.assign(n, kNoItem);
+  if (!color.empty()) color.assign(n, glm::vec4(0.0f));
+  if (!hits.empty()) hits.assign(n, 0u);
+}
+
+void Target::clearDepth(float value) {
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  fill32(reinterpret_cast<uint32_t*>(depth.data()), depth.size(), bits);
+}
+void Target::clearItem(uint32_t value) { fill32(item.data(), item.size(), value); }
+void Target::clearColor(const glm::vec4& value) { std::fill(color.begin(), color.end(), value); }
+
+void Target::clear() {
+  clearDepth();
+  clearItem();
+  clearColor();
+  std::fill(hits.begin(), hits.end(), 0u);
+}
+
+void transform(const glm::mat4& mvp, const glm::vec3* positions, size_t count, glm::vec4* clip) {
+  const glm::vec4 c0 = mvp[0], c1 = mvp[1], c2 = mvp[2], c3 = mvp[3];
+  for (size_t i = 0; i < count; ++i) {
+    const glm::vec3 p = positions[i];
+    clip[i] = c0 * p.x + c1 * p.y + c2 * p.z + c3;
+  }
+}
+
+void transform(const glm::mat4& mvp, const std::vector<glm::vec3>& positions,
+               std::vector<glm::vec4>& clip) {
+  clip.resize(positions.size());
+  transform(mvp, positions.data(), positions.size(), clip.data());
+}
+
+void drawTriangles(Target& target, const State& state, const glm::vec4* clip, size_t vertexCount,
+                   const uint32_t* indices, size_t triangleCount, const uint32_t* ids,
+                   const glm::vec4* colors) {
+  if (triangleCount == 0 || vertexCount == 0 || target.width < 1 || target.height < 1) return;
+  const size_t pixels = size_t(target.width) * size_t(target.height);
+  if (target.depth.size() != pixels || (!target.item.empty() && target.item.size() != pixels) ||
+      (!target.color.empty() && target.color.size() != pixels) ||
+      (!target.hits.empty() && target.hits.size() != pixels))
+    throw std::invalid_argument("raster::drawTriangles: target buffers do not match its size");
+  if (indices) {
+    if (maxIndex(indices, 3 * triangleCount) >= vertexCount)
+      throw std::out_of_range("raster::drawTriangles: vertex index out of range");
+  } else {
+    triangleCount = std::min(triangleCount, vertexCount / 3);
+  }
+
+  Ctx c{};
+  c.x0 = 0, c.y0 = 0, c.x1 = target.width - 1, c.y1 = target.height - 1;
+  if (state.scissorTest) {
+    c.x0 = std::max(c.x0, state.scissor.x);
+    c.y0 = std::max(c.y0, state.scissor.y);
+    c.x1 = std::min<int64_t>(c.x1, int64_t(state.scissor.x) + state.scissor.width - 1);
+    c.y1 = std::min<int64_t>(c.y1, int64_t(state.scissor.y) + state.scissor.height - 1);
+    if (c.x0 > c.x1 || c.y0 > c.y1) return;
+  }
+  const bool wantColor = state.shade != Shade::None && colors && !target.color.empty();
+  c.depth = target.depth.data();
+  c.item = target.item.empty() ? nullptr : target.item.data();
+  c.color = wantColor ? target.color.data() : nullptr;
+  c.hits = target.hits.empty() ? nullptr : target.hits.data();
+  c.width = target.width;
+  c.cullBack = state.cull == Cull::Back;
+  c.depthTest = state.depthTest;
+  c.depthWrite = state.depthWrite;
+
+  Frame f;
+  f.halfW = 0.5f * float(target.width);
+  f.halfH = 0.5f * float(target.height);
+  f.gx = kGuardPixels / f.halfW - 1.0f;
+  f.gy = kGuardPixels / f.halfH - 1.0f;
+  const bool zeroToOne = state.clipDepth == ClipDepth::ZeroToOne;
+  f.nearW = zeroToOne ? 0.0f : 1.0f;
+  f.zScale = zeroToOne ? 1.0f : 0.5f;
+  f.zBias = zeroToOne ? 0.0f : 0.5f;
+
+  // Vertex stage: outcodes and window coordinates of every vertex, once per draw.
+  auto& win = target.scratch.window;
+  auto& fixed = target.scratch.fixed;
+  auto& codes = target.scratch.code;
+  win.resize(vertexCount);
+  fixed.resize(vertexCount);
+  codes.resize(vertexCount);
+  vertexStage(clip, vertexCount, f, win.data(), fixed.data(), codes.data());
+
+  const bool fast = !wantColor && c.depthTest && c.depthWrite && c.item && !c.hits;
+  const Shade shade = wantColor ? state.shade : Shade::None;
+  if (state.depthFunc == DepthFunc::Greater)
+    dispatch<true>(fast, shade, c, f, clip, indices, triangleCount, ids, colors, win.data(),
+                   fixed.data(), codes.data());
+  else
+    dispatch<false>(fast, shade, c, f, clip, indices, triangleCount, ids, colors, win.data(),
+                    fixed.data(), codes.data());
+}
+
+}  // namespace raster

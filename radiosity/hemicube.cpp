@@ -1,0 +1,199 @@
+#include "radiosity/hemicube.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include "display/raster.h"
+#include "mesh/error.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/point_polygon.h"
+
+namespace rad {
+namespace {
+
+/// Item id of a triangle that occludes but receives nothing (seen from behind, or excluded).
+constexpr uint32_t kOccluder = raster::kNoItem - 1;
+
+/// Face f's clip-space coordinates of a point with local coordinates (a, b, c) along (u, v, n).
+/// Depth is reversed with z in [0, w] (z = near, so depth = near/distance, test GREATER): a
+/// 32-bit float then resolves distance to ~1e-7 relative at every range, so the near plane can
+/// sit very close. Side faces show only the upper half (c ≥ 0): y maps c ∈ [0, w] onto [-w, w].
+inline glm::vec4 faceClip(int f, const std::array<float, 3>& p, float near) {
+  float a = p[0], b = p[1], c = p[2];
+  switch (f) {
+    case 0: return {a, b, near, c};
+    case 1: return {b, 2 * c - a, near, a};
+    case 2: return {-b, 2 * c + a, near, -a};
+    case 3: return {-a, 2 * c - b, near, b};
+    default: return {a, 2 * c + b, near, -b};
+  }
+}
+
+}  // namespace
+
+double FormFactors::sum() const {
+  double s = sky + backFaces;
+  for (double f : factors) s += f;
+  return s;
+}
+
+HemicubeGeometry HemicubeGeometry::fromMesh(const PatchMesh& mesh) {
+  HemicubeGeometry g;
+  for (auto v : mesh.mesh.vertices()) g.positions.push_back(PatchMesh::toGlm(mesh.mesh.point(v)));
+  for (auto f : mesh.mesh.faces()) {
+    for (auto v : mesh.mesh.fv_range(f)) g.indices.push_back(uint32_t(v.idx()));
+    g.normals.push_back(mesh.normal(f.idx()));
+  }
+  return g;
+}
+
+int HemicubeGeometry::addTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  uint32_t base = uint32_t(positions.size());
+  positions.insert(positions.end(), {a, b, c});
+  indices.insert(indices.end(), {base, base + 1, base + 2});
+  normals.push_back(glm::normalize(glm::cross(b - a, c - a)));
+  return int(normals.size()) - 1;
+}
+
+const DeltaFormFactors& DeltaFormFactors::forResolution(int R) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<DeltaFormFactors>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[R];
+  if (slot) return *slot;
+  RAD_CHECK(R >= 2 && R % 2 == 0);
+  auto d = std::make_unique<DeltaFormFactors>();
+  d->resolution = R;
+  const glm::dvec3 origin(0.0), up(0, 0, 1);
+  const double h = 2.0 / R;
+  // Each pixel's factor is the exact factor of its square, seen from the origin (normal +z).
+  d->top.resize(size_t(R) * R);
+  for (int j = 0; j < R; ++j)
+    for (int i = 0; i < R; ++i) {
+      double x0 = -1 + i * h, y0 = -1 + j * h;
+      d->top[size_t(j) * R + i] = pointPolygonFormFactor(
+          origin, up, {{x0, y0, 1}, {x0 + h, y0, 1}, {x0 + h, y0 + h, 1}, {x0, y0 + h, 1}});
+    }
+  d->side.resize(size_t(R) * R / 2);
+  for (int j = 0; j < R / 2; ++j)
+    for (int i = 0; i < R; ++i) {
+      double x0 = -1 + i * h, z0 = j * h;  // side face x = 1 ... mirrored faces share the table
+      d->side[size_t(j) * R + i] = pointPolygonFormFactor(
+          origin, up, {{1, x0, z0}, {1, x0 + h, z0}, {1, x0 + h, z0 + h}, {1, x0, z0 + h}});
+    }
+  // The exact integrals sum to 1 up to round-off; normalise so that it holds to 1e-15.
+  double sum = 0;
+  for (double f : d->top) sum += f;
+  for (double f : d->side) sum += 4 * f;
+  d->exactSum = sum;
+  for (double& f : d->top) f /= sum;
+  for (double& f : d->side) f /= sum;
+  slot = std::move(d);
+  return *slot;
+}
+
+Hemicube::Hemicube(const HemicubeGeometry& geometry, int resolution, double sceneSize)
+    : geometry_(geometry), resolution_(resolution), near_(kNearPlane * sceneSize),
+      eyeOffset_(kEyeOffset * sceneSize), delta_(DeltaFormFactors::forResolution(resolution)) {
+  RAD_CHECK(sceneSize > 0);
+  faces_[0] = std::make_unique<raster::Target>(resolution, resolution, true, false);
+  for (int f = 1; f < 5; ++f)
+    faces_[f] = std::make_unique<raster::Target>(resolution, resolution / 2, true, false);
+  ids_.resize(geometry.elementCount());
+  local_.resize(geometry.positions.size());
+  accumulator_.assign(geometry.elementCount(), 0.0);
+}
+
+Hemicube::~Hemicube() = default;
+
+void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation,
+                       FormFactors& out, const std::vector<int>& excluded) {
+  // A frame turned about n by 2π·rotation, from a tangent least aligned with n.
+  glm::dvec3 t = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  glm::dvec3 u0 = glm::normalize(glm::cross(n, t)), v0 = glm::cross(n, u0);
+  double angle = 2 * M_PI * rotation;
+  glm::dvec3 u = std::cos(angle) * u0 + std::sin(angle) * v0;
+  glm::dvec3 v = glm::cross(n, u);
+  glm::dvec3 eye = x + eyeOffset_ * n;
+
+  // Elements seen from behind occlude but receive nothing; so do the excluded ones.
+  const auto& P = geometry_.positions;
+  const auto& I = geometry_.indices;
+  for (size_t e = 0; e < ids_.size(); ++e)
+    ids_[e] = glm::dot(geometry_.normals[e], eye - P[I[3 * e]]) > 0 ? uint32_t(e) : kOccluder;
+  for (int e : excluded) ids_[e] = kOccluder;
+
+  renderFaces(eye, u, v, n);
+  accumulate(out);
+}
+
+void Hemicube::renderFaces(const glm::dvec3& eye, const glm::dvec3& u, const glm::dvec3& v,
+                           const glm::dvec3& n) {
+  // Local coordinates in double, relative to the eye, then float for the raster.
+  const auto& P = geometry_.positions;
+  for (size_t i = 0; i < P.size(); ++i) {
+    glm::dvec3 d = P[i] - eye;
+    local_[i] = {float(glm::dot(d, u)), float(glm::dot(d, v)), float(glm::dot(d, n))};
+  }
+  raster::State state;
+  state.depthFunc = raster::DepthFunc::Greater;
+  state.clipDepth = raster::ClipDepth::ZeroToOne;
+  const float near = float(near_);
+  clip_.resize(P.size());
+  for (int f = 0; f < 5; ++f) {
+    for (size_t i = 0; i < P.size(); ++i) clip_[i] = faceClip(f, local_[i], near);
+    raster::Target& target = *faces_[f];
+    target.clearDepth(0.0f);
+    target.clearItem();
+    raster::drawTriangles(target, state, clip_.data(), clip_.size(), geometry_.indices.data(),
+                          geometry_.elementCount(), ids_.data());
+  }
+}
+
+void Hemicube::accumulate(FormFactors& out) {
+  out.elements.clear();
+  out.factors.clear();
+  out.sky = out.backFaces = 0;
+  const uint32_t n = uint32_t(accumulator_.size());
+  for (int f = 0; f < 5; ++f) {
+    const auto& item = faces_[f]->item;
+    const auto& delta = f == 0 ? delta_.top : delta_.side;
+    for (size_t k = 0; k < item.size(); ++k) {
+      uint32_t id = item[k];
+      if (id < n) {
+        if (accumulator_[id] == 0) touched_.push_back(int(id));
+        accumulator_[id] += delta[k];
+      } else if (id == raster::kNoItem) {
+        out.sky += delta[k];
+      } else {
+        out.backFaces += delta[k];
+      }
+    }
+  }
+  std::sort(touched_.begin(), touched_.end());
+  for (int e : touched_) {
+    out.elements.push_back(e);
+    out.factors.push_back(accumulator_[e]);
+    accumulator_[e] = 0;
+  }
+  touched_.clear();
+}
+
+double hemicubeRotation(uint64_t seed, uint64_t shooter, uint64_t sample) {
+  // SplitMix64 finaliser over the three keys: cheap, well mixed, and the same everywhere.
+  auto mix = [](uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  uint64_t h = mix(mix(mix(seed) ^ shooter) ^ sample);
+  return double(h >> 11) * 0x1.0p-53;
+}
+
+}  // namespace rad

@@ -1,0 +1,44 @@
+#include "radiosity/point_polygon.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace rad {
+namespace {
+
+/// Sutherland–Hodgman against the plane n·(p − x) ≥ 0: the part of the polygon above the
+/// point's tangent plane (the rest is below the horizon).
+std::vector<glm::dvec3> clipToHemisphere(const glm::dvec3& x, const glm::dvec3& n,
+                                         const std::vector<glm::dvec3>& polygon) {
+  std::vector<glm::dvec3> out;
+  size_t m = polygon.size();
+  for (size_t i = 0; i < m; ++i) {
+    const glm::dvec3& a = polygon[i];
+    const glm::dvec3& b = polygon[(i + 1) % m];
+    double da = glm::dot(n, a - x), db = glm::dot(n, b - x);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+}  // namespace
+
+double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
+                              const std::vector<glm::dvec3>& polygon) {
+  std::vector<glm::dvec3> p = clipToHemisphere(x, n, polygon);
+  if (p.size() < 3) return 0.0;
+  double sum = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    glm::dvec3 r0 = p[i] - x, r1 = p[(i + 1) % p.size()] - x;
+    glm::dvec3 c = glm::cross(r0, r1);
+    double len = glm::length(c);
+    if (len == 0) continue;  // an edge through x, or of zero length: contributes nothing
+    double gamma = std::atan2(len, glm::dot(r0, r1));
+    sum += gamma * glm::dot(n, c) / len;
+  }
+  return std::abs(sum) / (2 * M_PI);
+}
+
+}  // namespace rad
