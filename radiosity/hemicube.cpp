@@ -113,6 +113,13 @@ Hemicube::~Hemicube() = default;
 
 void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation,
                        FormFactors& out, const std::vector<int>& excluded) {
+  prepare(x, n, rotation, excluded);
+  renderFaces();
+  accumulate(out);
+}
+
+void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
+                       const std::vector<int>& excluded) {
   // A frame turned about n by 2π·rotation, from a tangent least aligned with n.
   glm::dvec3 t = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   glm::dvec3 u0 = glm::normalize(glm::cross(n, t)), v0 = glm::cross(n, u0);
@@ -128,58 +135,93 @@ void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation
     ids_[e] = glm::dot(geometry_.normals[e], eye - P[I[3 * e]]) > 0 ? uint32_t(e) : kOccluder;
   for (int e : excluded) ids_[e] = kOccluder;
 
-  renderFaces(eye, u, v, n);
-  accumulate(out);
-}
-
-void Hemicube::renderFaces(const glm::dvec3& eye, const glm::dvec3& u, const glm::dvec3& v,
-                           const glm::dvec3& n) {
   // Local coordinates in double, relative to the eye, then float for the raster.
-  const auto& P = geometry_.positions;
   for (size_t i = 0; i < P.size(); ++i) {
     glm::dvec3 d = P[i] - eye;
     local_[i] = {float(glm::dot(d, u)), float(glm::dot(d, v)), float(glm::dot(d, n))};
   }
+  // Only triangles reaching above the base plane can show on any face: often half the scene
+  // is behind the point, and no face needs to look at it.
+  drawIndices_.clear();
+  drawIds_.clear();
+  for (size_t e = 0; e < ids_.size(); ++e) {
+    uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
+    if (local_[a][2] > 0 || local_[b][2] > 0 || local_[c][2] > 0) {
+      drawIndices_.insert(drawIndices_.end(), {a, b, c});
+      drawIds_.push_back(ids_[e]);
+    }
+  }
+}
+
+void Hemicube::faceClip(int face, std::vector<glm::vec4>& clip) const {
+  const float near = float(near_);
+  clip.resize(local_.size());
+  for (size_t i = 0; i < local_.size(); ++i) clip[i] = rad::faceClip(face, local_[i], near);
+}
+
+void Hemicube::renderFaces() {
   raster::State state;
   state.depthFunc = raster::DepthFunc::Greater;
   state.clipDepth = raster::ClipDepth::ZeroToOne;
-  const float near = float(near_);
-  clip_.resize(P.size());
   for (int f = 0; f < 5; ++f) {
-    for (size_t i = 0; i < P.size(); ++i) clip_[i] = faceClip(f, local_[i], near);
+    faceClip(f, clip_);
     raster::Target& target = *faces_[f];
     target.clearDepth(0.0f);
     target.clearItem();
-    raster::drawTriangles(target, state, clip_.data(), clip_.size(), geometry_.indices.data(),
-                          geometry_.elementCount(), ids_.data());
+    raster::drawTriangles(target, state, clip_.data(), clip_.size(), drawIndices_.data(),
+                          drawIds_.size(), drawIds_.data());
   }
 }
 
 void Hemicube::accumulate(FormFactors& out) {
   out.elements.clear();
   out.factors.clear();
-  out.sky = out.backFaces = 0;
+  double sky = 0, back = 0;
   const uint32_t n = uint32_t(accumulator_.size());
-  for (int f = 0; f < 5; ++f) {
-    const auto& item = faces_[f]->item;
-    const auto& delta = f == 0 ? delta_.top : delta_.side;
-    for (size_t k = 0; k < item.size(); ++k) {
-      uint32_t id = item[k];
-      if (id < n) {
-        if (accumulator_[id] == 0) touched_.push_back(int(id));
-        accumulator_[id] += delta[k];
-      } else if (id == raster::kNoItem) {
-        out.sky += delta[k];
-      } else {
-        out.backFaces += delta[k];
-      }
+  // Neighbouring pixels mostly see the same element: sum runs, then add each run once.
+  auto flush = [&](uint32_t id, double sum) {
+    if (id < n) {
+      if (accumulator_[id] == 0) touched_.push_back(int(id));
+      accumulator_[id] += sum;
+    } else if (id == raster::kNoItem) {
+      sky += sum;
+    } else {
+      back += sum;
     }
+  };
+  for (int f = 0; f < 5; ++f) {
+    const uint32_t* item = faces_[f]->item.data();
+    const double* delta = (f == 0 ? delta_.top : delta_.side).data();
+    const size_t count = faces_[f]->item.size();
+    uint32_t run = item[0];
+    double sum = 0;
+    for (size_t k = 0; k < count; ++k) {
+      if (item[k] != run) {
+        flush(run, sum);
+        run = item[k];
+        sum = 0;
+      }
+      sum += delta[k];
+    }
+    flush(run, sum);
   }
-  std::sort(touched_.begin(), touched_.end());
-  for (int e : touched_) {
-    out.elements.push_back(e);
-    out.factors.push_back(accumulator_[e]);
-    accumulator_[e] = 0;
+  out.sky = sky;
+  out.backFaces = back;
+  // Ascending element order: sort a few, or scan the dense accumulator when many were seen.
+  if (touched_.size() * 32 > accumulator_.size()) {
+    for (size_t e = 0; e < accumulator_.size(); ++e)
+      if (accumulator_[e] != 0) {
+        out.elements.push_back(int(e));
+        out.factors.push_back(accumulator_[e]);
+        accumulator_[e] = 0;
+      }
+  } else {
+    std::sort(touched_.begin(), touched_.end());
+    for (int e : touched_) {
+      out.elements.push_back(e);
+      out.factors.push_back(accumulator_[e]);
+      accumulator_[e] = 0;
+    }
   }
   touched_.clear();
 }

@@ -70,13 +70,25 @@ class Hemicube {
 
   int resolution() const { return resolution_; }
 
+  /// The steps of compute(), for drawing the identical item buffers with another rasteriser
+  /// (benchmarks): prepare() places the cube and sets the item ids; faceClip() gives face f's
+  /// clip-space vertices (0 top R×R; 1–4 sides R×R/2, upper half only; z = near, reversed
+  /// [0, 1] depth, GREATER); ids()[e] is element e's item id (e, or an occluder id).
+  void prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
+               const std::vector<int>& excluded = {});
+  void faceClip(int face, std::vector<glm::vec4>& clip) const;
+  const std::vector<uint32_t>& ids() const { return ids_; }
+  /// The triangles prepare() found above the base plane (the others show on no face):
+  /// 3 vertex indices each, and their item ids.
+  const std::vector<uint32_t>& drawIndices() const { return drawIndices_; }
+  const std::vector<uint32_t>& drawIds() const { return drawIds_; }
+
   /// Near plane and eye offset, as fractions of the scene size.
   static constexpr double kNearPlane = 1e-7;
   static constexpr double kEyeOffset = 1e-6;
 
  private:
-  void renderFaces(const glm::dvec3& eye, const glm::dvec3& u, const glm::dvec3& v,
-                   const glm::dvec3& n);
+  void renderFaces();
   void accumulate(FormFactors& out);
 
   const HemicubeGeometry& geometry_;
@@ -85,6 +97,7 @@ class Hemicube {
   const DeltaFormFactors& delta_;
   std::array<std::unique_ptr<raster::Target>, 5> faces_;  // top, +u, -u, +v, -v
   std::vector<uint32_t> ids_;
+  std::vector<uint32_t> drawIndices_, drawIds_;  // the triangles above the base plane
   std::vector<std::array<float, 3>> local_;
   std::vector<glm::vec4> clip_;
   std::vector<double> accumulator_;

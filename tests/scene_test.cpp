@@ -99,6 +99,17 @@ TEST(SceneTest, MeshTransformScalesThenRotatesXYZThenTranslates) {
   EXPECT_TRUE(found);
 }
 
+TEST(SceneTest, PlyFacesKeepTheirPolygonsAndArea) {
+  Scene s = parse(sceneWith(R"({"m": {"reflectance": [0.5, 0.5, 0.5]}})",
+                            R"([{"name": "q", "material": "m", "mesh": "quad.ply",
+                                 "transform": {"scale": 3}}])"));
+  ASSERT_EQ(s.surfaces.size(), 1u);
+  ASSERT_EQ(s.surfaces[0].polygons.size(), 1u);
+  EXPECT_EQ(s.surfaces[0].polygons[0].outer.size(), 4u);
+  PatchMesh m = buildPatchMesh(s, {1.0, 2.0});
+  EXPECT_NEAR(m.surfaces[0].area, 2 * 1 * 9, 1e-9);
+}
+
 TEST(SceneTest, LightsFogAndLightModelFollowOpenGL) {
   Scene s = parse(sceneWith(R"({"m": {"reflectance": [0.5, 0.5, 0.5]}})", kSquare,
                             R"("light_model": {"ambient": [0.1, 0.1, 0.1], "two_sided": true},
