@@ -5,8 +5,11 @@
 //   build/bin/bench_hemicube [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <cstdio>
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
@@ -45,6 +48,24 @@ struct Points {
   int index = 0;
 };
 
+/// Milliseconds per hemicube of the last run of each (backend, R, thousands of triangles),
+/// for the ratio table printed at the end.
+std::map<std::tuple<std::string, int, int>, double> msPerHemicube;
+
+/// Times the benchmark loop by the wall clock, as Google Benchmark's real time does.
+class Stopwatch {
+ public:
+  explicit Stopwatch(benchmark::State& s) : state_(s), start_(std::chrono::steady_clock::now()) {}
+  void record(const std::string& backend) {
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    msPerHemicube[{backend, int(state_.range(0)), int(state_.range(1))}] = ms / double(state_.iterations());
+  }
+
+ private:
+  benchmark::State& state_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 void setCounters(benchmark::State& state, const Cornell& c) {
   double tris = double(c.mesh.elementCount());
   state.counters["triangles"] = tris;
@@ -57,11 +78,13 @@ void BM_HemicubeCore(benchmark::State& state) {
   rad::Hemicube hemicube(c.geometry, int(state.range(0)), c.scene.diagonal());
   rad::FormFactors ff;
   Points points(c.mesh);
+  Stopwatch watch(state);
   for (auto _ : state) {
     int e = points.next();
     hemicube.compute(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), ff, {e});
     benchmark::DoNotOptimize(ff.sky);
   }
+  watch.record("core");
   setCounters(state, c);
 }
 
@@ -75,6 +98,7 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
   std::vector<glm::vec4> clip;
   std::vector<uint32_t> items;
   Points points(c.mesh);
+  Stopwatch watch(state);
   for (auto _ : state) {
     int e = points.next();
     hemicube.prepare(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), {e});
@@ -85,6 +109,7 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
       benchmark::DoNotOptimize(items.data());
     }
   }
+  watch.record("osmesa");
   setCounters(state, c);
 }
 
@@ -98,6 +123,25 @@ BENCHMARK(BM_HemicubeOsMesa)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+/// The ratio llvmpipe time / our time for every case both backends ran.
+void printRatios() {
+  std::printf("\nhemicube: ms per hemicube, our core vs llvmpipe (OSMesa), Cornell box\n");
+  std::printf("%6s %10s %10s %10s %8s\n", "R", "triangles", "core", "llvmpipe", "ratio");
+  for (const auto& [key, core] : msPerHemicube) {
+    auto [backend, R, k] = key;
+    auto gl = msPerHemicube.find({"osmesa", R, k});
+    if (backend != "core" || gl == msPerHemicube.end()) continue;
+    std::printf("%6d %9dk %10.3f %10.3f %7.1fx\n", R, k, core, gl->second, gl->second / core);
+  }
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  printRatios();
+  benchmark::Shutdown();
+  return 0;
+}
