@@ -396,7 +396,6 @@ void PatchMesh::setElement(int e, int surface, int side, double area,
   auto f = face(e);
   mesh.property(surface_, f) = surface;
   mesh.property(side_, f) = side;
-  mesh.property(patch_, f) = -1;
   mesh.property(area_, f) = area;
   mesh.property(reflectance_, f) = toOpenMesh(reflectance);
   mesh.property(emission_, f) = toOpenMesh(emission);

@@ -72,7 +72,7 @@ class PatchMesh {
   /// The three corners of element e, counter-clockwise seen from its lit side.
   std::array<glm::dvec3, 3> corners(int e) const;
 
-  /// Adds element (a, b, c) with its attributes; used by buildPatchMesh.
+  /// Sets element e's attributes (its patch stays); used by buildPatchMesh.
   void setElement(int e, int surface, int side, double area, const glm::dvec3& reflectance,
                   const glm::dvec3& emission, const glm::dvec3& normal);
   void setPatch(int e, int patch) { mesh.property(patch_, face(e)) = patch; }

@@ -1,0 +1,197 @@
+#include "radiosity/progressive_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/error.h"
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+namespace {
+
+/// Recompute the running unshot total this often, so its round-off cannot drift.
+constexpr long kResumEvery = 256;
+
+/// Centroids of the 4ᵏ triangles of k-fold midpoint subdivision of (a, b, c).
+void subdivide(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int k,
+               std::vector<glm::dvec3>& out) {
+  if (k == 0) {
+    out.push_back((a + b + c) / 3.0);
+    return;
+  }
+  glm::dvec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
+  subdivide(a, ab, ca, k - 1, out);
+  subdivide(ab, b, bc, k - 1, out);
+  subdivide(ca, bc, c, k - 1, out);
+  subdivide(ab, bc, ca, k - 1, out);
+}
+
+}  // namespace
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+double EnergyLedger::residual() const {
+  glm::dvec3 gap = emitted - absorbed - escaped - unshot;
+  double worst = 0;
+  for (int k = 0; k < 3; ++k)
+    if (emitted[k] > 0) worst = std::max(worst, std::abs(gap[k]) / emitted[k]);
+  return worst;
+}
+
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum) {
+  const Patch& p = mesh.patches[patch];
+  int k = 0;
+  while (int(p.elements.size()) << (2 * k) < minimum) ++k;
+  std::vector<ShooterSample> out;
+  std::vector<glm::dvec3> points;
+  for (int e : p.elements) {
+    auto c = mesh.corners(e);
+    points.clear();
+    subdivide(c[0], c[1], c[2], k, points);
+    for (const auto& q : points)
+      out.push_back({e, 1.0 / double(points.size()), q, mesh.normal(e)});
+  }
+  return out;
+}
+
+HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize,
+                                 unsigned seed)
+    : mesh_(mesh), geometry_(HemicubeGeometry::fromMesh(mesh)),
+      hemicube_(std::make_unique<Hemicube>(geometry_, resolution, sceneSize)), seed_(seed) {}
+
+void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,
+                              FormFactors& out) {
+  hemicube_->compute(sample.point, sample.normal, hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)),
+                     out, mesh_.patches[patch].elements);
+}
+
+ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,
+                                     const SolverOptions& options)
+    : mesh_(mesh), factors_(factors), options_(options), start_(std::chrono::steady_clock::now()) {
+  const int n = mesh.elementCount();
+  B_.resize(n);
+  dB_.resize(n);
+  rho_.resize(n);
+  area_.resize(n);
+  patchOf_.resize(n);
+  for (int e = 0; e < n; ++e) {
+    B_[e] = dB_[e] = mesh.emission(e);
+    rho_[e] = mesh.reflectance(e);
+    area_[e] = mesh.area(e);
+    patchOf_[e] = mesh.patch(e);
+    ledger_.emitted += area_[e] * B_[e];
+    rhoMean_ += area_[e] * rho_[e];
+    totalArea_ += area_[e];
+  }
+  rhoMean_ /= totalArea_;
+  ledger_.unshot = ledger_.emitted;
+  emittedLuminance_ = luminance(ledger_.emitted);
+  patchUnshot_.assign(mesh.patches.size(), glm::dvec3(0.0));
+  samples_.resize(mesh.patches.size());
+  for (size_t p = 0; p < mesh.patches.size(); ++p) {
+    glm::dvec3 power(0.0);
+    for (int e : mesh.patches[p].elements) power += area_[e] * dB_[e];
+    patchUnshot_[p] = power;
+    unshotLuminance_ += std::abs(luminance(power));
+  }
+}
+
+double ProgressiveSolver::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+double ProgressiveSolver::unshotFraction() const {
+  return emittedLuminance_ > 0 ? unshotLuminance_ / emittedLuminance_ : 0.0;
+}
+
+glm::dvec3 ProgressiveSolver::ambient() const {
+  glm::dvec3 reflectionFactor = 1.0 / (1.0 - rhoMean_);
+  return reflectionFactor * ledger_.unshot / totalArea_;
+}
+
+int ProgressiveSolver::pickShooter() const {
+  int best = -1;
+  double most = 0;
+  for (size_t p = 0; p < patchUnshot_.size(); ++p) {
+    double power = std::abs(luminance(patchUnshot_[p]));
+    if (power > most) most = power, best = int(p);
+  }
+  return best;
+}
+
+void ProgressiveSolver::setPatchUnshot(int patch, const glm::dvec3& power) {
+  unshotLuminance_ += std::abs(luminance(power)) - std::abs(luminance(patchUnshot_[patch]));
+  patchUnshot_[patch] = power;
+}
+
+bool ProgressiveSolver::step() {
+  if (stop_ != Stop::None) return false;
+  if (unshotFraction() < options_.tolerance) stop_ = Stop::Tolerance;
+  else if (options_.maxShots > 0 && shots_ >= options_.maxShots) stop_ = Stop::MaxShots;
+  else if (options_.timeLimit > 0 && seconds() >= options_.timeLimit) stop_ = Stop::TimeLimit;
+  if (stop_ != Stop::None) return false;
+  int patch = pickShooter();
+  if (patch < 0) {  // nothing left to shoot at all
+    stop_ = Stop::Tolerance;
+    return false;
+  }
+  shoot(patch);
+  return true;
+}
+
+void ProgressiveSolver::run() {
+  while (step()) {
+  }
+}
+
+void ProgressiveSolver::shoot(int patch) {
+  const Patch& p = mesh_.patches[patch];
+  if (samples_[patch].empty()) {
+    bool emits = false;
+    for (int e : p.elements) emits = emits || luminance(mesh_.emission(e)) > 0;
+    samples_[patch] = patchSamples(mesh_, patch,
+                                   emits ? options_.emitterSamples : options_.shooterSamples);
+  }
+  // The power each element sends (ω times its unshot power) is fixed before any sample shoots.
+  const double omega = options_.overshoot;
+  for (int index = 0; index < int(samples_[patch].size()); ++index) {
+    const ShooterSample& s = samples_[patch][index];
+    glm::dvec3 power = omega * s.weight * area_[s.element] * dB_[s.element];
+    if (power == glm::dvec3(0.0)) continue;
+    factors_.factors(patch, index, s, ff_);
+    glm::dvec3 delivered(0.0);
+    for (size_t k = 0; k < ff_.elements.size(); ++k) {
+      int j = ff_.elements[k];
+      glm::dvec3 arriving = power * ff_.factors[k];
+      glm::dvec3 reflected = rho_[j] * arriving;  // ρⱼ·ΔBᵢ·Fᵢⱼ·Aᵢ/Aⱼ per unit area of j
+      delivered += arriving;
+      ledger_.absorbed += arriving - reflected;
+      if (reflected == glm::dvec3(0.0)) continue;  // black elements only absorb
+      glm::dvec3 dB = reflected / area_[j];
+      B_[j] += dB;
+      dB_[j] += dB;
+      int q = patchOf_[j];
+      setPatchUnshot(q, patchUnshot_[q] + reflected);
+    }
+    // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
+    ledger_.escaped += power - delivered;
+    powerShot_ += std::abs(luminance(power));
+  }
+  // The shooter keeps (1 − ω) of its unshot power: zero, or negative when overshooting.
+  glm::dvec3 left(0.0);
+  for (int e : p.elements) {
+    dB_[e] *= (1 - omega);
+    left += area_[e] * dB_[e];
+  }
+  setPatchUnshot(patch, left);
+  ++shots_;
+  // The ledger's unshot power and a fresh running total.
+  ledger_.unshot = glm::dvec3(0.0);
+  if (shots_ % kResumEvery == 0) unshotLuminance_ = 0;
+  for (size_t q = 0; q < patchUnshot_.size(); ++q) {
+    ledger_.unshot += patchUnshot_[q];
+    if (shots_ % kResumEvery == 0) unshotLuminance_ += std::abs(luminance(patchUnshot_[q]));
+  }
+}
+
+}  // namespace rad

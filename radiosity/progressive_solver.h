@@ -1,0 +1,122 @@
+#pragma once
+// Progressive refinement radiosity (Cohen, Chen, Wallace & Greenberg 1988): patches shoot
+// their unshot power, elements receive, with an energy ledger kept after every shot.
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "radiosity/hemicube.h"
+
+namespace rad {
+
+class PatchMesh;
+
+/// A point a patch shoots from: on one of its elements, carrying `weight` of that element's
+/// unshot power.
+struct ShooterSample {
+  int element = -1;
+  double weight = 1;
+  glm::dvec3 point{0.0}, normal{0.0};
+};
+
+/// Where the form factors of a shot come from: hemicubes in the solver, exact injected
+/// factors in tests.
+class FactorSource {
+ public:
+  virtual ~FactorSource() = default;
+  /// Factors from sample `index` of patch `patch` to every element (sparse), and what escaped.
+  virtual void factors(int patch, int index, const ShooterSample& sample, FormFactors& out) = 0;
+};
+
+/// Hemicubes over the whole mesh, turned by (seed, patch, sample), the patch's own elements
+/// excluded.
+class HemicubeFactors : public FactorSource {
+ public:
+  HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed);
+  void factors(int patch, int index, const ShooterSample& sample, FormFactors& out) override;
+
+ private:
+  const PatchMesh& mesh_;
+  HemicubeGeometry geometry_;
+  std::unique_ptr<Hemicube> hemicube_;
+  unsigned seed_;
+};
+
+/// Power per channel, Σ area·radiosity, in double precision.
+struct EnergyLedger {
+  glm::dvec3 emitted{0.0}, absorbed{0.0}, escaped{0.0}, unshot{0.0};
+  /// |emitted − absorbed − escaped − unshot| / emitted, largest channel (0 without emission).
+  double residual() const;
+};
+
+struct SolverOptions {
+  double tolerance = 1e-3;   ///< stop when unshot/emitted power (luminance) falls below
+  long maxShots = 0;         ///< 0: no limit
+  double timeLimit = 0;      ///< seconds; 0: no limit
+  double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
+  int emitterSamples = 16;   ///< at least this many points on an emitting patch
+  int shooterSamples = 4;    ///< at least this many points on any other patch
+};
+
+/// Luminance of linear sRGB (Rec. 709 weights).
+double luminance(const glm::dvec3& c);
+
+class ProgressiveSolver {
+ public:
+  enum class Stop { None, Tolerance, MaxShots, TimeLimit };
+
+  ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors, const SolverOptions& options);
+
+  /// Shoots from the patch with the largest unshot power; false once a stop condition holds.
+  bool step();
+  /// Steps until a stop condition holds.
+  void run();
+
+  Stop stopReason() const { return stop_; }
+  long shots() const { return shots_; }
+  double seconds() const;
+  /// Σ|Aᵢ·ΔBᵢ| / Σ Aᵢ·Eᵢ, luminance weighted.
+  double unshotFraction() const;
+  const EnergyLedger& ledger() const { return ledger_; }
+  /// Total power shot so far (luminance), the scale of the ledger's round-off.
+  double powerShot() const { return powerShot_; }
+
+  /// Element radiosity B and unshot radiosity ΔB, per channel.
+  const std::vector<glm::dvec3>& radiosity() const { return B_; }
+  const std::vector<glm::dvec3>& unshot() const { return dB_; }
+  /// The ambient term of Cohen et al. 1988: (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄), ρ̄ the area-weighted
+  /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient.
+  glm::dvec3 ambient() const;
+  /// The points each patch shoots from.
+  const std::vector<ShooterSample>& samples(int patch) const { return samples_[patch]; }
+
+ private:
+  int pickShooter() const;
+  void shoot(int patch);
+  void setPatchUnshot(int patch, const glm::dvec3& power);
+
+  const PatchMesh& mesh_;
+  FactorSource& factors_;
+  SolverOptions options_;
+  std::vector<std::vector<ShooterSample>> samples_;
+  std::vector<glm::dvec3> B_, dB_, rho_;
+  std::vector<double> area_;
+  std::vector<int> patchOf_;
+  std::vector<glm::dvec3> patchUnshot_;  // Σ A ΔB over the patch's elements
+  double unshotLuminance_ = 0, emittedLuminance_ = 0, powerShot_ = 0;
+  glm::dvec3 rhoMean_{0.0};
+  double totalArea_ = 0;
+  EnergyLedger ledger_;
+  long shots_ = 0;
+  Stop stop_ = Stop::None;
+  std::chrono::steady_clock::time_point start_;
+  FormFactors ff_;
+};
+
+/// Samples over a patch: every element's centroid, each element split into 4ᵏ equal
+/// triangles (midpoint subdivision) until there are at least `minimum` points.
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum);
+
+}  // namespace rad
