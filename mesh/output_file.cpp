@@ -11,14 +11,22 @@
 
 namespace rad {
 
-void writeFileAtomically(const std::string& path,
-                         const std::function<void(std::ostream&)>& write) {
+void checkOutputPath(const std::string& path) {
   namespace fs = std::filesystem;
   fs::path target(path);
-  if (target.filename().empty()) throw inputError(path, "an output file name", "a folder");
+  if (target.filename().empty() || fs::is_directory(target))
+    throw inputError(path, "an output file name", "a folder");
   fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   if (!fs::is_directory(dir))
     throw inputError(path, "an output file in an existing folder", "no folder " + dir.string());
+}
+
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(std::ostream&)>& write) {
+  namespace fs = std::filesystem;
+  checkOutputPath(path);
+  fs::path target(path);
+  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   fs::path temp = dir / ("." + target.filename().string() + "." + std::to_string(getpid()) + ".tmp");
   try {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);

@@ -11,4 +11,7 @@ namespace rad {
 /// file is removed and an InputError names the path.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+/// Checks, before any work, that `path` names a file in an existing folder; throws InputError.
+void checkOutputPath(const std::string& path);
+
 }  // namespace rad

@@ -28,7 +28,6 @@ namespace {
 constexpr double kOnEdgeTolerance = 1e-7;
 /// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
 constexpr int kMaxAgreementRounds = 200;
-/// Patch diameters may exceed maxPatchEdge by round-off only.
 
 /// Every distinct position gets one id, so equal points compare by id.
 class PointTable {
@@ -481,6 +480,7 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
         patch.centroid /= patch.area;
         patch.normal = normal;
         const auto& r = patchPieces[p].rings[0];
+        patch.corners = {table[r[0]], table[r[side ? 2 : 1]], table[r[side ? 1 : 2]]};
         patch.diameter = std::max({glm::length(table[r[0]] - table[r[1]]),
                                    glm::length(table[r[1]] - table[r[2]]),
                                    glm::length(table[r[2]] - table[r[0]])});

@@ -86,8 +86,9 @@ struct Fog {
 /// The scene's `solver` block: defaults that command-line flags override. Unset values
 /// take defaults relative to the scene size (see resolveSettings).
 struct SolverBlock {
-  std::optional<double> maxElementEdge, maxPatchEdge, tolerance;
+  std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
   std::optional<int> hemicubeResolution;
+  std::optional<long> maxShots;
   std::optional<unsigned> seed;
 };
 

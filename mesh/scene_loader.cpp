@@ -482,13 +482,22 @@ class SceneReader {
 
   void readSolver(const Node& n) {
     n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution", "tolerance",
-                    "seed"});
+                    "seed", "max_shots", "time_limit", "overshoot", "exposure"});
     SolverBlock& b = scene_.solver;
     if (n.has("max_element_edge"))
       b.maxElementEdge = n["max_element_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
     if (n.has("max_patch_edge"))
       b.maxPatchEdge = n["max_patch_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
     if (n.has("tolerance")) b.tolerance = n["tolerance"].number(1e-300, 1, "(0, 1]");
+    if (n.has("time_limit")) b.timeLimit = n["time_limit"].number(1e-300, HUGE_VAL, "(0, inf)");
+    if (n.has("overshoot")) b.overshoot = n["overshoot"].number(1, 2, "[1, 2]");
+    if (n.has("exposure")) b.exposure = n["exposure"].number(1e-300, HUGE_VAL, "(0, inf)");
+    if (n.has("max_shots")) {
+      Node m = n["max_shots"];
+      double x = m.number(1, 1e15, "[1, 1e15]");
+      if (x != std::floor(x)) m.fail("a whole number");
+      b.maxShots = long(x);
+    }
     if (n.has("hemicube_resolution")) {
       Node r = n["hemicube_resolution"];
       double x = r.number(2, 8192, "[2, 8192]");

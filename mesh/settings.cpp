@@ -15,6 +15,10 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, 256);
   s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
   s.seed = pick(flags.seed, file.seed, 1u);
+  s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
+  s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
+  s.overshoot = pick(flags.overshoot, file.overshoot, 1.0);
+  s.exposure = flags.exposure ? flags.exposure : file.exposure;
   return s;
 }
 

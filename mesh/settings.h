@@ -1,6 +1,8 @@
 #pragma once
 // Effective settings: command-line flags override the scene's solver block, which overrides
 // defaults relative to the scene size.
+#include <optional>
+
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 
@@ -16,6 +18,10 @@ struct Settings {
   int hemicubeResolution = 256;
   double tolerance = 1e-3;
   unsigned seed = 1;
+  long maxShots = 0;         ///< 0: no limit
+  double timeLimit = 0;      ///< seconds; 0: no limit
+  double overshoot = 1;      ///< ω of overshooting; 1: plain shooting
+  std::optional<double> exposure;  ///< unset: chosen automatically
 
   MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge}; }
 };

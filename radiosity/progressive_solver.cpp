@@ -1,7 +1,10 @@
 #include "radiosity/progressive_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 #include "mesh/error.h"
 #include "mesh/patch_mesh.h"
@@ -26,9 +29,38 @@ void subdivide(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, in
   subdivide(ab, bc, ca, k - 1, out);
 }
 
-}  // namespace
+/// The 4ᵏ triangles of k-fold midpoint subdivision of (a, b, c).
+void subdivideTriangles(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int k,
+                        std::vector<std::array<glm::dvec3, 3>>& out) {
+  if (k == 0) {
+    out.push_back({a, b, c});
+    return;
+  }
+  glm::dvec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
+  subdivideTriangles(a, ab, ca, k - 1, out);
+  subdivideTriangles(ab, b, bc, k - 1, out);
+  subdivideTriangles(ca, bc, c, k - 1, out);
+  subdivideTriangles(ab, bc, ca, k - 1, out);
+}
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+/// The part containing x (or, at round-off on a shared edge, the one whose centroid is nearest).
+size_t nearestPart(const std::vector<std::array<glm::dvec3, 3>>& parts, const glm::dvec3& x) {
+  size_t best = 0;
+  double bestDistance = HUGE_VAL;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const auto& t = parts[i];
+    glm::dvec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+    bool inside = glm::dot(glm::cross(t[1] - t[0], x - t[0]), n) >= 0 &&
+                  glm::dot(glm::cross(t[2] - t[1], x - t[1]), n) >= 0 &&
+                  glm::dot(glm::cross(t[0] - t[2], x - t[2]), n) >= 0;
+    if (inside) return i;
+    double d = glm::length((t[0] + t[1] + t[2]) / 3.0 - x);
+    if (d < bestDistance) bestDistance = d, best = i;
+  }
+  return best;
+}
+
+}  // namespace
 
 double EnergyLedger::residual() const {
   glm::dvec3 gap = emitted - absorbed - escaped - unshot;
@@ -40,17 +72,38 @@ double EnergyLedger::residual() const {
 
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum) {
   const Patch& p = mesh.patches[patch];
-  int k = 0;
-  while (int(p.elements.size()) << (2 * k) < minimum) ++k;
+  const int n = int(p.elements.size());
   std::vector<ShooterSample> out;
   std::vector<glm::dvec3> points;
-  for (int e : p.elements) {
-    auto c = mesh.corners(e);
-    points.clear();
-    subdivide(c[0], c[1], c[2], k, points);
-    for (const auto& q : points)
-      out.push_back({e, 1.0 / double(points.size()), q, mesh.normal(e)});
+  if (n < minimum) {
+    int k = 0;
+    while (n << (2 * k) < minimum) ++k;
+    for (int e : p.elements) {
+      auto c = mesh.corners(e);
+      points.clear();
+      subdivide(c[0], c[1], c[2], k, points);
+      for (const auto& q : points)
+        out.push_back({{e}, {1.0 / double(points.size())}, q, mesh.normal(e)});
+    }
+    return out;
   }
+  int k = 0;
+  while ((1 << (2 * k)) < minimum) ++k;
+  std::vector<std::array<glm::dvec3, 3>> parts;
+  subdivideTriangles(p.corners[0], p.corners[1], p.corners[2], k, parts);
+  out.resize(parts.size());
+  for (size_t i = 0; i < parts.size(); ++i) {
+    out[i].point = (parts[i][0] + parts[i][1] + parts[i][2]) / 3.0;
+    out[i].normal = p.normal;
+  }
+  for (int e : p.elements) {
+    size_t part = nearestPart(parts, mesh.centroid(e));
+    out[part].elements.push_back(e);
+    out[part].weights.push_back(1.0);
+  }
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [](const ShooterSample& s) { return s.elements.empty(); }),
+            out.end());
   return out;
 }
 
@@ -156,7 +209,10 @@ void ProgressiveSolver::shoot(int patch) {
   const double omega = options_.overshoot;
   for (int index = 0; index < int(samples_[patch].size()); ++index) {
     const ShooterSample& s = samples_[patch][index];
-    glm::dvec3 power = omega * s.weight * area_[s.element] * dB_[s.element];
+    glm::dvec3 power(0.0);
+    for (size_t k = 0; k < s.elements.size(); ++k)
+      power += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
+    power *= omega;
     if (power == glm::dvec3(0.0)) continue;
     factors_.factors(patch, index, s, ff_);
     glm::dvec3 delivered(0.0);

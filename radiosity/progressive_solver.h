@@ -7,17 +7,17 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/color.h"
 #include "radiosity/hemicube.h"
 
 namespace rad {
 
 class PatchMesh;
 
-/// A point a patch shoots from: on one of its elements, carrying `weight` of that element's
-/// unshot power.
+/// A point a patch shoots from, carrying weights[k] of elements[k]'s unshot power.
 struct ShooterSample {
-  int element = -1;
-  double weight = 1;
+  std::vector<int> elements;
+  std::vector<double> weights;
   glm::dvec3 point{0.0}, normal{0.0};
 };
 
@@ -59,9 +59,6 @@ struct SolverOptions {
   int emitterSamples = 16;   ///< at least this many points on an emitting patch
   int shooterSamples = 4;    ///< at least this many points on any other patch
 };
-
-/// Luminance of linear sRGB (Rec. 709 weights).
-double luminance(const glm::dvec3& c);
 
 class ProgressiveSolver {
  public:
@@ -115,8 +112,10 @@ class ProgressiveSolver {
   FormFactors ff_;
 };
 
-/// Samples over a patch: every element's centroid, each element split into 4ᵏ equal
-/// triangles (midpoint subdivision) until there are at least `minimum` points.
+/// Stratified samples over a patch, at least `minimum` of them. A patch with fewer elements
+/// splits each element into 4ᵏ equal triangles (midpoint subdivision) and shoots a share of it
+/// from each centroid; a patch with more splits its own triangle into 4ᵏ ≥ minimum parts, and
+/// each part shoots the power of the elements whose centroids lie in it from its centroid.
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum);
 
 }  // namespace rad

@@ -86,3 +86,15 @@ cli_test(usage.formfactors_nothing 2 "--from or --point" "" formfactors ${PROJEC
 cli_test(usage.formfactors_both 2 "excludes" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --from floor --point 0,0,0 --normal 0,1,0)
 cli_test(usage.formfactors_odd_hemicube 2 "even" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --from floor --hemicube 65)
 cli_test(usage.formfactors_point_without_normal 2 "normal" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0,0,0)
+
+# solve: the main job, on a small scene; a scene without emitters is bad input for solve only.
+cli_test(solve.small 0 "converged after" ${OUT_DIR}/small.ply
+         solve ${DATA}/good_small.json -o ${OUT_DIR}/small.ply --report ${OUT_DIR}/small.json --hemicube 64)
+cli_test(solve.shot_limit 0 "stopped after 3 shots" ${OUT_DIR}/limited.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o ${OUT_DIR}/limited.ply --max-shots 3 --hemicube 32)
+cli_test(bad.solve_no_emitter 1 "no_emitter.json: surfaces: expected at least one surface whose material has an emission, found none"
+         ${OUT_DIR}/no_emitter.ply solve ${DATA}/no_emitter.json -o ${OUT_DIR}/no_emitter.ply)
+cli_test(info.no_emitter 0 "" "" info ${DATA}/no_emitter.json)
+cli_test(bad.solve_report_folder 1 "no_such_folder/r.json: expected an output file in an existing folder"
+         ${OUT_DIR}/r.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/r.ply --report ${OUT_DIR}/no_such_folder/r.json --hemicube 32)
+cli_test(usage.solve_overshoot 2 "overshoot" ${OUT_DIR}/o.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/o.ply --overshoot 3)

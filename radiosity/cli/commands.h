@@ -17,10 +17,13 @@ struct Command {
 
 /// Flags shared by every command that meshes: one name each, as in the scene's solver block.
 void addMeshFlags(CLI::App& app, SolverBlock& flags);
+/// --hemicube and --seed, shared by every command that computes form factors.
+void addSolverFlags(CLI::App& app, SolverBlock& flags);
 
 Command addInfoCommand(CLI::App& app);
 Command addMeshCommand(CLI::App& app);
 Command addFormFactorsCommand(CLI::App& app);
+Command addSolveCommand(CLI::App& app);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

@@ -155,11 +155,7 @@ Command addFormFactorsCommand(CLI::App& app) {
   from->excludes(point)->excludes(normal);
   point->needs(normal);
   normal->needs(point);
-  sub->add_option("--hemicube", o->flags.hemicubeResolution,
-                   "Hemicube resolution, pixels across the top face (solver.hemicube_resolution; default 256)")
-      ->check(CLI::Range(2, 8192))
-      ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
-  sub->add_option("--seed", o->flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
+  addSolverFlags(*sub, o->flags);
   addMeshFlags(*sub, o->flags);
   sub->callback([sub, from, point] {
     if (from->count() == 0 && point->count() == 0)

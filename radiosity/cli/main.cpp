@@ -19,6 +19,15 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
       ->check(CLI::PositiveNumber);
 }
 
+void addSolverFlags(CLI::App& app, SolverBlock& flags) {
+  app.add_option("--hemicube", flags.hemicubeResolution,
+                 "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
+                 "default 256)")
+      ->check(CLI::Range(2, 8192))
+      ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
+  app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
+}
+
 void printWarnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "radiosity: warning: " << w << "\n";
 }
@@ -28,7 +37,8 @@ void printWarnings(const std::vector<std::string>& warnings) {
 int main(int argc, char** argv) {
   CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
   app.require_subcommand(1);
-  std::vector<rad::cli::Command> commands = {rad::cli::addInfoCommand(app),
+  std::vector<rad::cli::Command> commands = {rad::cli::addSolveCommand(app),
+                                             rad::cli::addInfoCommand(app),
                                              rad::cli::addMeshCommand(app),
                                              rad::cli::addFormFactorsCommand(app)};
   try {

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "mesh/mesh_export.h"
+#include "mesh/output_file.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/settings.h"
 #include "radiosity/cli/commands.h"
@@ -16,6 +17,7 @@ struct MeshOptions {
 };
 
 void runMesh(const MeshOptions& o) {
+  checkOutputPath(o.output);
   Scene scene = loadScene(o.scene);
   Settings settings = resolveSettings(scene, o.flags);
   PatchMesh mesh = buildPatchMesh(scene, settings.mesh());

@@ -1,0 +1,172 @@
+// radiosity solve SCENE -o RESULT.ply [--report R.json]: the main job.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "mesh/error.h"
+#include "mesh/output_file.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/settings.h"
+#include "radiosity/cli/commands.h"
+#include "radiosity/progressive_solver.h"
+#include "radiosity/result.h"
+
+namespace rad::cli {
+namespace {
+
+/// History rows at least this often (seconds), and at shot counts growing by this factor.
+constexpr double kHistorySeconds = 0.05;
+constexpr double kHistoryShotGrowth = 1.25;
+/// Progress line refresh on a terminal (seconds).
+constexpr double kProgressSeconds = 0.1;
+
+struct SolveOptions {
+  std::string scene, output, report;
+  SolverBlock flags;
+};
+
+using Json = nlohmann::ordered_json;
+
+Json rgb(const glm::dvec3& c) { return Json::array({c.x, c.y, c.z}); }
+
+const char* stopName(ProgressiveSolver::Stop s) {
+  switch (s) {
+    case ProgressiveSolver::Stop::MaxShots: return "max_shots";
+    case ProgressiveSolver::Stop::TimeLimit: return "time_limit";
+    default: return "tolerance";
+  }
+}
+
+Json historyRow(const ProgressiveSolver& solver) {
+  Json row;
+  row["seconds"] = solver.seconds();
+  row["shots"] = solver.shots();
+  row["unshot_fraction"] = solver.unshotFraction();
+  row["residual"] = solver.ledger().residual();
+  return row;
+}
+
+void runSolve(const SolveOptions& o) {
+  checkOutputPath(o.output);
+  if (!o.report.empty()) checkOutputPath(o.report);
+  Scene scene = loadScene(o.scene);
+  if (!scene.hasEmitter())
+    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission",
+                     "none (radiosity light comes from emitting surfaces)");
+  Settings settings = resolveSettings(scene, o.flags);
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  printWarnings(scene.warnings);
+  printWarnings(mesh.warnings);
+
+  SolverOptions options;
+  options.tolerance = settings.tolerance;
+  options.maxShots = settings.maxShots;
+  options.timeLimit = settings.timeLimit;
+  options.overshoot = settings.overshoot;
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  ProgressiveSolver solver(mesh, factors, options);
+
+  // Shoot, keeping the history and showing progress on a terminal.
+  Json history = Json::array();
+  history.push_back(historyRow(solver));
+  double nextRowShots = 1, lastRowSeconds = 0, lastProgress = 0;
+  const bool terminal = isatty(STDERR_FILENO);
+  while (solver.step()) {
+    double t = solver.seconds();
+    if (solver.shots() >= nextRowShots || t - lastRowSeconds >= kHistorySeconds) {
+      history.push_back(historyRow(solver));
+      nextRowShots = std::ceil(solver.shots() * kHistoryShotGrowth);
+      lastRowSeconds = t;
+    }
+    if (terminal && t - lastProgress >= kProgressSeconds) {
+      std::fprintf(stderr, "\rradiosity: %ld shots, unshot %.2e, %.1f s   ", solver.shots(),
+                   solver.unshotFraction(), t);
+      lastProgress = t;
+    }
+  }
+  if (terminal) std::fprintf(stderr, "\n");
+  if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver));
+
+  // Bake: unconverged solutions show the ambient term in their display colours.
+  bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
+  glm::dvec3 ambient = converged ? glm::dvec3(0.0) : solver.ambient();
+  double exposure = settings.exposure ? *settings.exposure : autoExposure(mesh, solver.radiosity());
+  Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);
+
+  Json report;
+  report["scene"] = scene.path;
+  Json s;
+  s["max_element_edge"] = settings.maxElementEdge;
+  s["max_patch_edge"] = settings.maxPatchEdge;
+  s["hemicube_resolution"] = settings.hemicubeResolution;
+  s["tolerance"] = settings.tolerance;
+  s["seed"] = settings.seed;
+  s["max_shots"] = settings.maxShots;
+  s["time_limit"] = settings.timeLimit;
+  s["overshoot"] = settings.overshoot;
+  s["emitter_samples"] = options.emitterSamples;
+  s["shooter_samples"] = options.shooterSamples;
+  report["settings"] = s;
+  Json counts;
+  counts["surfaces"] = scene.surfaces.size();
+  counts["patches"] = mesh.patches.size();
+  counts["elements"] = mesh.elementCount();
+  counts["vertices"] = mesh.mesh.n_vertices();
+  counts["left_out"] = Json::object();
+  report["counts"] = counts;
+  report["shots"] = solver.shots();
+  report["seconds"] = solver.seconds();
+  report["stop_reason"] = stopName(solver.stopReason());
+  report["exposure"] = exposure;
+  report["ambient_applied"] = !converged;
+  report["ambient"] = rgb(ambient);
+  report["camera"] = {{"eye", rgb(camera.eye)}, {"target", rgb(camera.target)},
+                      {"up", rgb(camera.up)}, {"fov_y_deg", camera.fovYDeg}};
+  const EnergyLedger& l = solver.ledger();
+  report["energy"] = {{"emitted", rgb(l.emitted)}, {"absorbed", rgb(l.absorbed)},
+                      {"escaped", rgb(l.escaped)}, {"unshot", rgb(l.unshot)},
+                      {"residual", l.residual()}};
+  report["history"] = history;
+
+  // Outputs: each through a temporary file; the report last, so a report means a result.
+  writeResult(o.output, mesh, solver.radiosity(), ambient, exposure, camera);
+  if (!o.report.empty())
+    writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+  std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",
+               converged ? "converged" : "stopped", solver.shots(), solver.seconds(),
+               solver.unshotFraction(), stopName(solver.stopReason()), o.output.c_str());
+}
+
+}  // namespace
+
+Command addSolveCommand(CLI::App& app) {
+  auto o = std::make_shared<SolveOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "solve", "Solve the scene by progressive refinement and write the result mesh (vertex "
+               "radiosities as colours) and, optionally, a JSON report");
+  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
+  sub->add_option("-o,--output", o->output, "Result mesh (binary PLY)")->required();
+  sub->add_option("--report", o->report, "Report file (JSON): settings, counts, energy ledger, history");
+  addMeshFlags(*sub, o->flags);
+  addSolverFlags(*sub, o->flags);
+  sub->add_option("--tolerance", o->flags.tolerance,
+                  "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3)")
+      ->check(CLI::Range(1e-300, 1.0));
+  sub->add_option("--max-shots", o->flags.maxShots, "Stop after this many shots (solver.max_shots)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--time-limit", o->flags.timeLimit, "Stop after this many seconds (solver.time_limit)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--overshoot", o->flags.overshoot,
+                  "Overshooting factor ω in [1, 2] (solver.overshoot; default 1, plain shooting)")
+      ->check(CLI::Range(1.0, 2.0));
+  sub->add_option("--exposure", o->flags.exposure,
+                  "Display exposure K (solver.exposure; default: automatic, see README)")
+      ->check(CLI::PositiveNumber);
+  return {sub, [o] { runSolve(*o); }};
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,101 @@
+#include "radiosity/result.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "mesh/color.h"
+#include "mesh/mesh_export.h"
+
+namespace rad {
+
+std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
+  std::vector<glm::dvec3> out(m.mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto v : m.mesh.vertices()) {
+    double area = 0;
+    glm::dvec3 sum(0.0);
+    for (auto f : m.mesh.vf_range(v)) {
+      sum += m.area(f.idx()) * B[f.idx()];
+      area += m.area(f.idx());
+    }
+    out[v.idx()] = area > 0 ? sum / area : glm::dvec3(0.0);
+  }
+  return out;
+}
+
+double autoExposure(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
+  std::vector<std::pair<double, double>> lumArea;  // (luminance, area)
+  double total = 0;
+  for (int e = 0; e < m.elementCount(); ++e) {
+    if (luminance(m.emission(e)) > 0) continue;
+    lumArea.emplace_back(luminance(B[e]), m.area(e));
+    total += m.area(e);
+  }
+  std::sort(lumArea.begin(), lumArea.end());
+  double seen = 0, reference = 0;
+  for (const auto& [lum, area] : lumArea) {
+    seen += area;
+    reference = lum;
+    if (seen >= kExposurePercentile * total) break;
+  }
+  return reference > 0 ? kExposureTarget / reference : 1.0;
+}
+
+Camera defaultCamera(const Scene& scene) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const auto& s : scene.surfaces)
+    for (const auto& p : s.polygons)
+      for (const auto& q : p.outer) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  Camera c;
+  c.fovYDeg = 45;
+  c.target = (lo + hi) * 0.5;
+  double radius = glm::length(hi - lo) * 0.5;
+  double distance = radius / std::sin(glm::radians(c.fovYDeg) * 0.5);
+  c.eye = c.target - glm::dvec3(0, 0, distance);
+  c.up = glm::dvec3(0, 1, 0);
+  return c;
+}
+
+void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                 const glm::dvec3& ambient, double exposure, const Camera& camera) {
+  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, B);
+  // The display colour adds ρ·ambient; a vertex takes the mean reflectance of its elements.
+  std::vector<glm::dvec3> display(vertexB);
+  if (ambient != glm::dvec3(0.0)) display = vertexRadiosity(mesh, [&] {
+    std::vector<glm::dvec3> shown(B);
+    for (int e = 0; e < mesh.elementCount(); ++e) shown[e] += mesh.reflectance(e) * ambient;
+    return shown;
+  }());
+  PlyMesh ply = toPly(mesh);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "camera eye %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov_y_deg %.9g",
+                camera.eye.x, camera.eye.y, camera.eye.z, camera.target.x, camera.target.y,
+                camera.target.z, camera.up.x, camera.up.y, camera.up.z, camera.fovYDeg);
+  ply.comments.push_back(buf);
+  std::snprintf(buf, sizeof buf, "exposure %.9g", exposure);
+  ply.comments.push_back(buf);
+  const char* colours[] = {"red", "green", "blue"};
+  const char* channels[] = {"radiosity_r", "radiosity_g", "radiosity_b"};
+  for (int k = 0; k < 3; ++k) {
+    PlyColumn c{colours[k], PlyColumn::Type::UChar, {}};
+    for (const auto& d : display) c.values.push_back(displayByte(d[k], exposure));
+    ply.vertex.push_back(std::move(c));
+  }
+  for (int k = 0; k < 3; ++k) {
+    PlyColumn c{channels[k], PlyColumn::Type::Float, {}};
+    for (const auto& b : vertexB) c.values.push_back(b[k]);
+    ply.vertex.push_back(std::move(c));
+  }
+  for (int k = 0; k < 3; ++k) {
+    PlyColumn c{channels[k], PlyColumn::Type::Float, {}};
+    for (const auto& b : B) c.values.push_back(b[k]);
+    ply.face.push_back(std::move(c));
+  }
+  writePly(path, ply);
+}
+
+}  // namespace rad

@@ -1,0 +1,38 @@
+#pragma once
+// Baking a solution into the result mesh (DESIGN.md, "Result mesh"): vertex radiosities,
+// display colours and the exposure rule.
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/patch_mesh.h"
+#include "mesh/scene.h"
+
+namespace rad {
+
+/// Vertex radiosities for Gouraud display: the area-weighted mean of the elements around each
+/// vertex (vertices belong to one side of one surface, so creases and material edges stay sharp).
+std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
+
+/// The share of non-emitting area at or below the exposure's reference luminance.
+constexpr double kExposurePercentile = 0.95;
+/// The display value (linear, before sRGB) the reference luminance maps to.
+constexpr double kExposureTarget = 0.8;
+
+/// Automatic exposure K: the area-weighted 95th percentile of element luminance over the
+/// non-emitting elements maps to 0.8 (linear), so emitters saturate and walls keep detail.
+/// 1 when nothing non-emitting is lit.
+double autoExposure(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
+
+/// A camera for scenes without one: looking along +z at the centre of the bounding box from
+/// far enough to see all of it.
+Camera defaultCamera(const Scene& scene);
+
+/// Writes the result mesh: per vertex position, normal, display colour sRGB(clamp(K·(B + ρ·a)))
+/// and linear radiosity B; per face the surface index and the element's own B. `ambient` (a) is
+/// added to the display colour only (zero once converged). Atomic: temporary file, then rename.
+void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                 const glm::dvec3& ambient, double exposure, const Camera& camera);
+
+}  // namespace rad
