@@ -7,6 +7,7 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 #include "radiosity/progressive_solver.h"
+#include "radiosity/reference_solver.h"
 
 namespace rad {
 namespace {
@@ -179,6 +180,53 @@ TEST_F(CornellSolveTest, DoublingEmissionDoublesRadiosity) {
     for (int k = 0; k < 3; ++k)
       ASSERT_NEAR(twice.radiosity()[e][k], 2 * once.radiosity()[e][k],
                   1e-12 * std::abs(once.radiosity()[e][k]) + 1e-300);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// Progressive refinement, Jacobi and Gauss–Seidel all converge to the direct solution of the
+/// system built from the very same hemicubes.
+TEST(ReferenceTest, EverySolverConvergesToTheDirectSolutionOnTheSameFactors) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh mesh = buildPatchMesh(scene, {110, 220});
+  HemicubeFactors factors(mesh, 64, scene.diagonal(), 3);
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  TransportMatrix system(mesh, factors, options);
+  std::vector<glm::dvec3> direct = system.solveDirect();
+
+  ProgressiveSolver progressive(mesh, factors, options);
+  progressive.run();
+  EXPECT_LT(relativeError(mesh, progressive.radiosity(), direct), 1e-8);
+
+  double jacobi = 1, gaussSeidel = 1;
+  system.solveJacobi(200, [&](int, const std::vector<glm::dvec3>& B) {
+    jacobi = relativeError(mesh, B, direct);
+    return jacobi > 1e-10;
+  });
+  system.solveGaussSeidel(200, [&](int, const std::vector<glm::dvec3>& B) {
+    gaussSeidel = relativeError(mesh, B, direct);
+    return gaussSeidel > 1e-10;
+  });
+  EXPECT_LT(jacobi, 1e-9);
+  EXPECT_LT(gaussSeidel, 1e-9);
+  for (const auto& b : direct) EXPECT_TRUE(b.x >= 0 && b.y >= 0 && b.z >= 0);
+}
+
+TEST(ReferenceTest, RelativeErrorIgnoresEmittersAndWeighsByArea) {
+  Scene scene = loadScene(kScenes + "parallel_squares.json");
+  PatchMesh mesh = buildPatchMesh(scene, {10, 10});
+  std::vector<glm::dvec3> ref(mesh.elementCount(), glm::dvec3(1.0)), B(ref);
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (mesh.surface(e) == 0) B[e] = glm::dvec3(5.0);  // the emitter: not counted
+  EXPECT_EQ(relativeError(mesh, B, ref), 0.0);
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (mesh.surface(e) == 1) B[e] = glm::dvec3(1.1);
+  EXPECT_NEAR(relativeError(mesh, B, ref), 0.1, 1e-12);
 }
 
 }  // namespace

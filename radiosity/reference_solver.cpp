@@ -1,0 +1,101 @@
+#include "radiosity/reference_solver.h"
+
+#include <cmath>
+
+#include "mesh/color.h"
+#include "mesh/error.h"
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
+                                 const SolverOptions& options) {
+  const int n = mesh.elementCount();
+  if (n > kMaxReferenceElements)
+    throw inputError("--reference direct", "a mesh of at most " + std::to_string(kMaxReferenceElements) +
+                                               " elements for the dense reference solution",
+                     std::to_string(n) + " elements (use a coarser mesh or --reference FILE.ply)");
+  G_ = Eigen::MatrixXd::Zero(n, n);
+  rho_.resize(n);
+  E_.resize(n);
+  for (int e = 0; e < n; ++e) {
+    rho_[e] = mesh.reflectance(e);
+    E_[e] = mesh.emission(e);
+  }
+  FormFactors ff;
+  for (int p = 0; p < int(mesh.patches.size()); ++p) {
+    bool emits = false;
+    for (int e : mesh.patches[p].elements) emits = emits || luminance(mesh.emission(e)) > 0;
+    auto samples = patchSamples(mesh, p, emits ? options.emitterSamples : options.shooterSamples);
+    for (int index = 0; index < int(samples.size()); ++index) {
+      const ShooterSample& s = samples[index];
+      factors.factors(p, index, s, ff);
+      for (size_t k = 0; k < ff.elements.size(); ++k) {
+        int j = ff.elements[k];
+        for (size_t m = 0; m < s.elements.size(); ++m) {
+          int i = s.elements[m];
+          G_(j, i) += s.weights[m] * ff.factors[k] * mesh.area(i) / mesh.area(j);
+        }
+      }
+    }
+  }
+}
+
+std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
+  const int n = size();
+  std::vector<glm::dvec3> B(n);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd A = -G_;
+    Eigen::VectorXd rhs(n);
+    for (int j = 0; j < n; ++j) {
+      A.row(j) *= rho_[j][c];
+      A(j, j) += 1.0;
+      rhs(j) = E_[j][c];
+    }
+    Eigen::VectorXd x = A.partialPivLu().solve(rhs);
+    for (int j = 0; j < n; ++j) B[j][c] = x(j);
+  }
+  return B;
+}
+
+void TransportMatrix::solveJacobi(int maxSweeps, const SweepCallback& callback) const {
+  const int n = size();
+  Eigen::MatrixXd B(n, 3), E(n, 3), rho(n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int c = 0; c < 3; ++c) E(j, c) = E_[j][c], rho(j, c) = rho_[j][c];
+  B = E;
+  std::vector<glm::dvec3> out(n);
+  for (int sweep = 1; sweep <= maxSweeps; ++sweep) {
+    B = E + rho.cwiseProduct(G_ * B);
+    for (int j = 0; j < n; ++j) out[j] = {B(j, 0), B(j, 1), B(j, 2)};
+    if (!callback(sweep, out)) return;
+  }
+}
+
+void TransportMatrix::solveGaussSeidel(int maxSweeps, const SweepCallback& callback) const {
+  const int n = size();
+  std::vector<glm::dvec3> B(E_);
+  for (int sweep = 1; sweep <= maxSweeps; ++sweep) {
+    for (int j = 0; j < n; ++j) {
+      glm::dvec3 gathered(0.0);
+      for (int i = 0; i < n; ++i) gathered += G_(j, i) * B[i];  // G's self terms are zero
+      B[j] = E_[j] + rho_[j] * gathered;
+    }
+    if (!callback(sweep, B)) return;
+  }
+}
+
+double relativeError(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                     const std::vector<glm::dvec3>& reference) {
+  double num = 0, den = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (luminance(mesh.emission(e)) > 0) continue;
+    glm::dvec3 d = B[e] - reference[e];
+    num += mesh.area(e) * (d.x * d.x + d.y * d.y + d.z * d.z);
+    const glm::dvec3& r = reference[e];
+    den += mesh.area(e) * (r.x * r.x + r.y * r.y + r.z * r.z);
+  }
+  return den > 0 ? std::sqrt(num / den) : 0.0;
+}
+
+}  // namespace rad
