@@ -8,7 +8,9 @@
 #include <glm/trigonometric.hpp>
 
 #include "mesh/color.h"
+#include "mesh/error.h"
 #include "mesh/mesh_export.h"
+#include "mesh/ply_reader.h"
 
 namespace rad {
 
@@ -96,6 +98,40 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
     ply.face.push_back(std::move(c));
   }
   writePly(path, ply);
+}
+
+/// Result positions are stored as float: points agree to this times the scene size.
+constexpr double kSameGeometry = 1e-5;
+
+std::vector<glm::dvec3> readResultRadiosity(const std::string& path, const PatchMesh& mesh,
+                                            double sceneSize) {
+  PlyMesh ply = readPly(path);
+  const int n = mesh.elementCount();
+  const std::string expected = "a result of the same scene and mesh settings";
+  if (int(ply.faces.size()) != n)
+    throw inputError(path, expected + " (" + std::to_string(n) + " elements)",
+                     std::to_string(ply.faces.size()) + " faces");
+  const PlyColumn* channel[3];
+  std::string missing;
+  const char* names[] = {"radiosity_r", "radiosity_g", "radiosity_b"};
+  for (int k = 0; k < 3; ++k)
+    if (!(channel[k] = findColumn(ply.face, names[k]))) missing += std::string(missing.empty() ? "" : ", ") + names[k];
+  const PlyColumn* xyz[3] = {findColumn(ply.vertex, "x"), findColumn(ply.vertex, "y"),
+                             findColumn(ply.vertex, "z")};
+  if (!xyz[0] || !xyz[1] || !xyz[2]) missing += std::string(missing.empty() ? "" : ", ") + "vertex x y z";
+  if (!missing.empty()) throw inputError(path, "face radiosity_r/g/b and vertex x y z", "no " + missing);
+  std::vector<glm::dvec3> B(n);
+  for (int e = 0; e < n; ++e) {
+    auto corners = mesh.corners(e);
+    for (int k = 0; k < 3; ++k) {
+      int v = ply.faces[e][k];
+      glm::dvec3 p(xyz[0]->values[v], xyz[1]->values[v], xyz[2]->values[v]);
+      if (glm::length(p - corners[k]) > kSameGeometry * sceneSize)
+        throw inputError(path, expected, "element " + std::to_string(e) + " elsewhere");
+    }
+    B[e] = {channel[0]->values[e], channel[1]->values[e], channel[2]->values[e]};
+  }
+  return B;
 }
 
 }  // namespace rad

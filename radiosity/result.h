@@ -35,4 +35,10 @@ Camera defaultCamera(const Scene& scene);
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                  const glm::dvec3& ambient, double exposure, const Camera& camera);
 
+/// The element radiosities of an earlier result of the same scene and mesh settings, for
+/// comparison. Throws InputError when the file is not such a result (element count, geometry
+/// or the face radiosity properties differ).
+std::vector<glm::dvec3> readResultRadiosity(const std::string& path, const PatchMesh& mesh,
+                                            double sceneSize);
+
 }  // namespace rad

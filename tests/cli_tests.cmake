@@ -98,3 +98,11 @@ cli_test(info.no_emitter 0 "" "" info ${DATA}/no_emitter.json)
 cli_test(bad.solve_report_folder 1 "no_such_folder/r.json: expected an output file in an existing folder"
          ${OUT_DIR}/r.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/r.ply --report ${OUT_DIR}/no_such_folder/r.json --hemicube 32)
 cli_test(usage.solve_overshoot 2 "overshoot" ${OUT_DIR}/o.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/o.ply --overshoot 3)
+cli_test(solve.reference_direct 0 "converged after" ${OUT_DIR}/ref.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o ${OUT_DIR}/ref.ply --reference direct --hemicube 64)
+cli_test(bad.solve_reference_mismatch 1 "small.ply: expected a result of the same scene and mesh settings"
+         ${OUT_DIR}/mismatch.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o ${OUT_DIR}/mismatch.ply
+         --reference ${OUT_DIR}/small.ply --hemicube 32)
+set_tests_properties(cli.bad.solve_reference_mismatch PROPERTIES DEPENDS cli.solve.small)
+cli_test(convergence.small 0 "Gauss-Seidel" ${OUT_DIR}/conv.svg
+         convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o ${OUT_DIR}/conv.svg --csv ${OUT_DIR}/conv.csv --hemicube 32)

@@ -231,3 +231,39 @@ TEST(ReferenceTest, RelativeErrorIgnoresEmittersAndWeighsByArea) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+/// Scaling the geometry and every length setting by a power of two scales every floating-point
+/// quantity exactly, so radiosities must not move: a difference reveals an absolute tolerance.
+TEST(ScaleTest, RadiosityIsScaleInvariant) {
+  auto solve = [](double s) {
+    Scene scene = loadScene(kScenes + "cornell.json");
+    for (auto& surface : scene.surfaces)
+      for (auto& polygon : surface.polygons) {
+        for (auto& p : polygon.outer) p *= s;
+        for (auto& hole : polygon.holes)
+          for (auto& p : hole) p *= s;
+      }
+    PatchMesh mesh = buildPatchMesh(scene, {100 * s, 200 * s});
+    HemicubeFactors factors(mesh, 64, scene.diagonal(), 1);
+    SolverOptions options;
+    options.maxShots = 150;
+    ProgressiveSolver solver(mesh, factors, options);
+    solver.run();
+    return solver.radiosity();
+  };
+  auto unit = solve(1);
+  for (double s : {std::ldexp(1.0, 10), std::ldexp(1.0, -10)}) {
+    auto scaled = solve(s);
+    ASSERT_EQ(scaled.size(), unit.size());
+    for (size_t e = 0; e < unit.size(); ++e)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_NEAR(scaled[e][k], unit[e][k], 1e-6 * std::abs(unit[e][k]) + 1e-300)
+            << "scale " << s << ", element " << e;
+  }
+}
+
+}  // namespace
+}  // namespace rad

@@ -24,6 +24,7 @@ Command addInfoCommand(CLI::App& app);
 Command addMeshCommand(CLI::App& app);
 Command addFormFactorsCommand(CLI::App& app);
 Command addSolveCommand(CLI::App& app);
+Command addConvergenceCommand(CLI::App& app);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

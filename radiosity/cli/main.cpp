@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
   std::vector<rad::cli::Command> commands = {rad::cli::addSolveCommand(app),
                                              rad::cli::addInfoCommand(app),
                                              rad::cli::addMeshCommand(app),
-                                             rad::cli::addFormFactorsCommand(app)};
+                                             rad::cli::addFormFactorsCommand(app),
+                                             rad::cli::addConvergenceCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

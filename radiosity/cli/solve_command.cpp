@@ -13,6 +13,7 @@
 #include "mesh/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/progressive_solver.h"
+#include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
 
 namespace rad::cli {
@@ -25,7 +26,7 @@ constexpr double kHistoryShotGrowth = 1.25;
 constexpr double kProgressSeconds = 0.1;
 
 struct SolveOptions {
-  std::string scene, output, report;
+  std::string scene, output, report, reference;
   SolverBlock flags;
 };
 
@@ -41,12 +42,14 @@ const char* stopName(ProgressiveSolver::Stop s) {
   }
 }
 
-Json historyRow(const ProgressiveSolver& solver) {
+Json historyRow(const ProgressiveSolver& solver, const PatchMesh& mesh,
+                const std::vector<glm::dvec3>& reference) {
   Json row;
   row["seconds"] = solver.seconds();
   row["shots"] = solver.shots();
   row["unshot_fraction"] = solver.unshotFraction();
   row["residual"] = solver.ledger().residual();
+  if (!reference.empty()) row["error"] = relativeError(mesh, solver.radiosity(), reference);
   return row;
 }
 
@@ -68,17 +71,23 @@ void runSolve(const SolveOptions& o) {
   options.timeLimit = settings.timeLimit;
   options.overshoot = settings.overshoot;
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  // The reference first, so that the solve's own clock does not count it.
+  std::vector<glm::dvec3> reference;
+  if (o.reference == "direct")
+    reference = TransportMatrix(mesh, factors, options).solveDirect();
+  else if (!o.reference.empty())
+    reference = readResultRadiosity(o.reference, mesh, scene.diagonal());
   ProgressiveSolver solver(mesh, factors, options);
 
   // Shoot, keeping the history and showing progress on a terminal.
   Json history = Json::array();
-  history.push_back(historyRow(solver));
+  history.push_back(historyRow(solver, mesh, reference));
   double nextRowShots = 1, lastRowSeconds = 0, lastProgress = 0;
   const bool terminal = isatty(STDERR_FILENO);
   while (solver.step()) {
     double t = solver.seconds();
     if (solver.shots() >= nextRowShots || t - lastRowSeconds >= kHistorySeconds) {
-      history.push_back(historyRow(solver));
+      history.push_back(historyRow(solver, mesh, reference));
       nextRowShots = std::ceil(solver.shots() * kHistoryShotGrowth);
       lastRowSeconds = t;
     }
@@ -89,7 +98,7 @@ void runSolve(const SolveOptions& o) {
     }
   }
   if (terminal) std::fprintf(stderr, "\n");
-  if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver));
+  if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver, mesh, reference));
 
   // Bake: unconverged solutions show the ambient term in their display colours.
   bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
@@ -130,6 +139,10 @@ void runSolve(const SolveOptions& o) {
   report["energy"] = {{"emitted", rgb(l.emitted)}, {"absorbed", rgb(l.absorbed)},
                       {"escaped", rgb(l.escaped)}, {"unshot", rgb(l.unshot)},
                       {"residual", l.residual()}};
+  if (!reference.empty()) {
+    report["reference"] = o.reference;
+    report["error"] = relativeError(mesh, solver.radiosity(), reference);
+  }
   report["history"] = history;
 
   // Outputs: each through a temporary file; the report last, so a report means a result.
@@ -163,6 +176,10 @@ Command addSolveCommand(CLI::App& app) {
   sub->add_option("--overshoot", o->flags.overshoot,
                   "Overshooting factor ω in [1, 2] (solver.overshoot; default 1, plain shooting)")
       ->check(CLI::Range(1.0, 2.0));
+  sub->add_option("--reference", o->reference,
+                  "Compare with a reference: 'direct' (solve the full system from the same hemicubes "
+                  "first) or an earlier result PLY of the same scene and mesh settings; the "
+                  "report's history then has the relative L2 error");
   sub->add_option("--exposure", o->flags.exposure,
                   "Display exposure K (solver.exposure; default: automatic, see README)")
       ->check(CLI::PositiveNumber);
