@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #if defined(__SSE2__) && !defined(RASTER_NO_SIMD)
 #include <emmintrin.h>
@@ -42,16 +43,34 @@ struct Frame {
   float zScale, zBias; // depth = z_ndc * zScale + zBias
 };
 
+// A product kept apart from the sum it feeds. Where the build allows FMA contraction (say
+// -march=native), the compiler could fuse a*b + c in one copy of a formula and not in another
+// (scalar and SSE2 vertex stage, outcodes and clipper, the rasterisers' depths); with this, all
+// copies keep computing the same operations, bit for bit. Without FMA instructions (as in the
+// default x86-64 build) there is nothing to fuse, and it compiles to nothing.
+#if defined(__GNUC__) && defined(__x86_64__) && (defined(__FMA__) || defined(__FMA4__))
+template <class T>
+inline T rounded(T v) {
+  __asm__("" : "+x"(v));
+  return v;
+}
+#else
+template <class T>
+inline T rounded(T v) {
+  return v;
+}
+#endif
+
 // Signed distance of v to clipping plane p (0 near, 1 far, 2-5 guard left/right/bottom/top);
 // inside iff >= 0. The outcodes and the clipper both use it, so they always agree.
 inline float planeDist(const glm::vec4& v, int p, const Frame& f) {
   switch (p) {
-    case 0: return v.z + f.nearW * v.w;
+    case 0: return v.z + rounded(f.nearW * v.w);
     case 1: return v.w - v.z;
-    case 2: return v.x + f.gx * v.w;
-    case 3: return f.gx * v.w - v.x;
-    case 4: return v.y + f.gy * v.w;
-    default: return f.gy * v.w - v.y;
+    case 2: return v.x + rounded(f.gx * v.w);
+    case 3: return rounded(f.gx * v.w) - v.x;
+    case 4: return v.y + rounded(f.gy * v.w);
+    default: return rounded(f.gy * v.w) - v.y;
   }
 }
 
@@ -69,8 +88,8 @@ inline uint32_t outcode(const glm::vec4& v, const Frame& f) {
 // Clip space -> (x_w, y_w, depth, 1/w).
 inline glm::vec4 project(const glm::vec4& v, const Frame& f) {
   const float q = 1.0f / v.w;
-  return glm::vec4((v.x * q + 1.0f) * f.halfW, (v.y * q + 1.0f) * f.halfH,
-                   v.z * q * f.zScale + f.zBias, q);
+  return glm::vec4((rounded(v.x * q) + 1.0f) * f.halfW, (rounded(v.y * q) + 1.0f) * f.halfH,
+                   rounded(v.z * q * f.zScale) + f.zBias, q);
 }
 
 // Window coordinate -> fixed point, rounded to nearest even like cvtps2dq in vertexStage
@@ -102,10 +121,10 @@ void vertexStage(const glm::vec4* clip, size_t n, const Frame& f, glm::vec4* win
     __m128 x = _mm_loadu_ps(&clip[v].x), y = _mm_loadu_ps(&clip[v + 1].x);
     __m128 z = _mm_loadu_ps(&clip[v + 2].x), w = _mm_loadu_ps(&clip[v + 3].x);
     _MM_TRANSPOSE4_PS(x, y, z, w);
-    const __m128 gxw = _mm_mul_ps(gx, w), gyw = _mm_mul_ps(gy, w);
+    const __m128 gxw = rounded(_mm_mul_ps(gx, w)), gyw = rounded(_mm_mul_ps(gy, w));
     __m128i c = _mm_or_si128(bit(_mm_add_ps(x, w), 0), bit(_mm_sub_ps(w, x), 1));
     c = _mm_or_si128(c, _mm_or_si128(bit(_mm_add_ps(y, w), 2), bit(_mm_sub_ps(w, y), 3)));
-    const __m128i nearOut = _mm_or_si128(_mm_castps_si128(_mm_cmpnge_ps(_mm_add_ps(z, _mm_mul_ps(_mm_set1_ps(f.nearW), w)), zero)),
+    const __m128i nearOut = _mm_or_si128(_mm_castps_si128(_mm_cmpnge_ps(_mm_add_ps(z, rounded(_mm_mul_ps(_mm_set1_ps(f.nearW), w))), zero)),
                                          _mm_castps_si128(_mm_cmpngt_ps(w, zero)));
     c = _mm_or_si128(c, _mm_and_si128(nearOut, _mm_set1_epi32(1 << kFirstPlaneBit)));
     c = _mm_or_si128(c, bit(_mm_sub_ps(w, z), kFirstPlaneBit + 1));
@@ -115,9 +134,9 @@ void vertexStage(const glm::vec4* clip, size_t n, const Frame& f, glm::vec4* win
     c = _mm_or_si128(c, bit(_mm_sub_ps(gyw, y), kFirstPlaneBit + 5));
     _mm_storel_epi64(reinterpret_cast<__m128i*>(codes + v), _mm_packs_epi32(c, c));
     const __m128 q = _mm_div_ps(one, w);
-    __m128 wx = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(x, q), one), hw);
-    __m128 wy = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(y, q), one), hh);
-    __m128 wz = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(z, q), _mm_set1_ps(f.zScale)),
+    __m128 wx = _mm_mul_ps(_mm_add_ps(rounded(_mm_mul_ps(x, q)), one), hw);
+    __m128 wy = _mm_mul_ps(_mm_add_ps(rounded(_mm_mul_ps(y, q)), one), hh);
+    __m128 wz = _mm_add_ps(rounded(_mm_mul_ps(_mm_mul_ps(z, q), _mm_set1_ps(f.zScale))),
                            _mm_set1_ps(f.zBias));
     __m128 wq = q;
     const __m128i fx = _mm_cvtps_epi32(_mm_mul_ps(wx, fixedScale));
@@ -176,10 +195,37 @@ struct Plane {
   double x10, y10, x20, y20, inv;
   void gradient(double a0, double a1, double a2, double& gx, double& gy) const {
     const double a10 = a1 - a0, a20 = a2 - a0;
-    gx = (a10 * y20 - a20 * y10) * inv;
-    gy = (a20 * x10 - a10 * x20) * inv;
+    gx = (rounded(a10 * y20) - rounded(a20 * y10)) * inv;
+    gy = (rounded(a20 * x10) - rounded(a10 * x20)) * inv;
   }
 };
+
+// Attribute planes of counter-clockwise triangle (v0, v1, v2), twice its snapped area `area`:
+// from the exact (unsnapped) positions, or the snapped ones if those degenerate.
+inline Plane makePlane(const SVert& v0, const SVert& v1, const SVert& v2, int64_t area) {
+  Plane pl{double(v1.x) - v0.x, double(v1.y) - v0.y, double(v2.x) - v0.x, double(v2.y) - v0.y, 0};
+  double det = rounded(pl.x10 * pl.y20) - rounded(pl.x20 * pl.y10);
+  if (!(det > 0.0)) {
+    const double s = 1.0 / kOne;
+    pl = Plane{(v1.X - v0.X) * s, (v1.Y - v0.Y) * s, (v2.X - v0.X) * s, (v2.Y - v0.Y) * s, 0};
+    det = double(area) * s * s;
+  }
+  pl.inv = 1.0 / det;
+  return pl;
+}
+
+// Depth of the triangle at the centre of pixel (ix0, iy0), and its gradient.
+inline void depthAt(const Plane& pl, const SVert& v0, const SVert& v1, const SVert& v2, int ix0,
+                    int iy0, double& z00, double& dzdx, double& dzdy) {
+  const double cx = ix0 + 0.5 - v0.x, cy = iy0 + 0.5 - v0.y;  // centre of (ix0, iy0) rel. v0
+  pl.gradient(v0.z, v1.z, v2.z, dzdx, dzdy);
+  z00 = v0.z + rounded(dzdx * cx) + rounded(dzdy * cy);
+}
+
+// Depth at the first pixel of row offset dj (float; the pixels step from it in float).
+inline float depthRowStart(double z00, double dzdy, double dj) {
+  return float(z00 + rounded(dzdy * dj));
+}
 
 // Depth clamp to [0, 1], written to match SSE maxps/minps bit for bit.
 inline float clampDepth(float z) {
@@ -244,18 +290,10 @@ void rasterTriangle(const Ctx& c, const SVert& v0, const SVert& v1, const SVert&
   }
 
   // Attribute planes from the exact (unsnapped) positions; snapped ones if those degenerate.
-  Plane pl{double(v1.x) - v0.x, double(v1.y) - v0.y, double(v2.x) - v0.x, double(v2.y) - v0.y, 0};
-  double det = pl.x10 * pl.y20 - pl.x20 * pl.y10;
-  if (!(det > 0.0)) {
-    const double s = 1.0 / kOne;
-    pl = Plane{(v1.X - v0.X) * s, (v1.Y - v0.Y) * s, (v2.X - v0.X) * s, (v2.Y - v0.Y) * s, 0};
-    det = double(area) * s * s;
-  }
-  pl.inv = 1.0 / det;
+  const Plane pl = makePlane(v0, v1, v2, area);
   const double cx = ix0 + 0.5 - v0.x, cy = iy0 + 0.5 - v0.y;  // centre of (ix0, iy0) rel. v0
-  double dzdx, dzdy;
-  pl.gradient(v0.z, v1.z, v2.z, dzdx, dzdy);
-  const double z00 = v0.z + dzdx * cx + dzdy * cy;
+  double z00, dzdx, dzdy;
+  depthAt(pl, v0, v1, v2, ix0, iy0, z00, dzdx, dzdy);
   const float fdzdx = float(dzdx);
 
   // Smooth shading: q = 1/w and s_k = lambda_k/w are affine in window space.
@@ -329,7 +367,7 @@ void rasterTriangle(const Ctx& c, const SVert& v0, const SVert& v1, const SVert&
   size_t rowBase = size_t(iy0) * size_t(width) + size_t(ix0);
   for (int j = iy0; j <= iy1; ++j, rowBase += size_t(width)) {
     const double dj = j - iy0;
-    const float zr = float(z00 + dzdy * dj);  // depth at pixel ix0 of this row
+    const float zr = depthRowStart(z00, dzdy, dj);  // depth at pixel ix0 of this row
     bool seen = false;
 #if RASTER_SSE2
     __m128i e0Lo = r0Lo, e1Lo = r1Lo, e2Lo = r2Lo, e0Hi = r0Hi, e1Hi = r1Hi, e2Hi = r2Hi;
@@ -358,7 +396,7 @@ void rasterTriangle(const Ctx& c, const SVert& v0, const SVert& v1, const SVert&
         continue;
       }
       seen = true;
-      const __m128 z = _mm_min_ps(_mm_max_ps(_mm_add_ps(zr4, _mm_mul_ps(dz4, fk)), zero4), one4);
+      const __m128 z = _mm_min_ps(_mm_max_ps(_mm_add_ps(zr4, rounded(_mm_mul_ps(dz4, fk))), zero4), one4);
       if constexpr (Fast) {
         if (i + 3 < width) {  // blend the 4 pixels at once
           float* d = depth + rowBase + size_t(i - ix0);
@@ -381,7 +419,7 @@ void rasterTriangle(const Ctx& c, const SVert& v0, const SVert& v1, const SVert&
       float zs[4];
       for (int l = 0; l < 4; ++l) {
         mask |= int((e[0] | e[1] | e[2]) >= 0) << l;
-        zs[l] = clampDepth(zr + fdzdx * float(i + l - ix0));
+        zs[l] = clampDepth(zr + rounded(fdzdx * float(i + l - ix0)));
         e[0] += sx[0], e[1] += sx[1], e[2] += sx[2];
       }
       mask &= valid;
@@ -408,6 +446,203 @@ inline void drawSnapped(const Ctx& c, const SVert& v0, const SVert& v1, const SV
   else if (a < 0 && !c.cullBack)
     rasterTriangle<Fast, S, Greater>(c, v0, v2, v1, -a);
 }
+
+#if RASTER_SSE2
+// SSE2 min/max of 32-bit lanes (pminsd/pmaxsd are SSE4.1).
+inline __m128i minEpi32(__m128i a, __m128i b) {
+  const __m128i gt = _mm_cmpgt_epi32(a, b);
+  return _mm_or_si128(_mm_and_si128(gt, b), _mm_andnot_si128(gt, a));
+}
+inline __m128i maxEpi32(__m128i a, __m128i b) {
+  const __m128i gt = _mm_cmpgt_epi32(a, b);
+  return _mm_or_si128(_mm_and_si128(gt, a), _mm_andnot_si128(gt, b));
+}
+
+// The item+depth path's setup for unclipped triangles whose vertex spans are below kSmallSpan =
+// 2^14 in fixed point (64 pixels): nearly all of them with the fine meshes of a hemicube.
+// Coordinates relative to a vertex then fit in 16 bits, so that pmaddwd gives the edge
+// functions of the three edges at once, and the edge functions over the bounding box (plus
+// the 3 columns a chunk may reach beyond it) stay below 2^29.1 in magnitude: 32-bit lanes,
+// 4 pixels per register instead of 2. Boxes of at most 4 x kSmallRows pixel centres (most
+// triangles of a fine mesh) get their whole coverage first, branch-free, and the depth plane
+// only if some centre is covered; larger ones walk rows of 4-pixel chunks like rasterTriangle.
+// Results are those of rasterTriangle<true, ...> bit for bit: the integer edge tests are
+// exact, the chunks are the same (so are the pixels rewritten beyond the box), and the depth
+// values come from the same sequence of IEEE operations.
+constexpr int kSmallRows = 4;
+constexpr int32_t kSmallSpan = 1 << 14;
+
+// Per-draw constants of fastTriangle.
+struct FastCtx {
+  __m128i clipLo, clipHi;  // (x0, y0, 0, 0), (x1, y1, 0, 0): pixel range of viewport & scissor
+  int width;
+};
+
+// One unclipped triangle (vertex indices i0, i1, i2) of the item+depth path: bounding box,
+// orientation, then the small-box or chunked setup above, or rasterTriangle for large spans.
+// (Not inlined: the triangle loop stays small, and this measures a little faster.)
+template <bool Greater>
+__attribute__((noinline)) void fastTriangle(Ctx& c, const FastCtx& fc, const glm::vec4* win,
+                                            const glm::ivec2* fixed, uint32_t i0, uint32_t i1,
+                                            uint32_t i2, uint32_t id) {
+  const __m128i p0 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(fixed + i0));  // X, Y, 0, 0
+  const __m128i p1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(fixed + i1));
+  const __m128i p2 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(fixed + i2));
+  // Pixels whose centres lie in the snapped bounding box (as in rasterTriangle), lanes x, y.
+  const __m128i mn = minEpi32(p0, minEpi32(p1, p2)), mx = maxEpi32(p0, maxEpi32(p1, p2));
+  const __m128i lo = maxEpi32(_mm_srai_epi32(_mm_add_epi32(mn, _mm_set1_epi32(kOne - 1 - kHalf)),
+                                             kSubpixelBits), fc.clipLo);
+  const __m128i hi = minEpi32(_mm_srai_epi32(_mm_sub_epi32(mx, _mm_set1_epi32(kHalf)),
+                                             kSubpixelBits), fc.clipHi);
+  if (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(lo, hi))) & 3) return;  // no centre
+  const __m128i dims = _mm_sub_epi32(hi, lo);  // columns - 1, rows - 1
+  // Twice the signed area (exact in 64 bits).
+  const int64_t X0 = fixed[i0].x, Y0 = fixed[i0].y;
+  const int64_t X1 = fixed[i1].x - X0, Y1 = fixed[i1].y - Y0;
+  const int64_t X2 = fixed[i2].x - X0, Y2 = fixed[i2].y - Y0;
+  const int64_t signedArea = X1 * Y2 - X2 * Y1;
+  if (signedArea == 0 || (signedArea < 0 && c.cullBack)) return;
+  const bool flip = signedArea < 0;  // clockwise: rasterise (v0, v2, v1)
+  const int64_t area = flip ? -signedArea : signedArea;
+  const uint32_t j1 = flip ? i2 : i1, j2 = flip ? i1 : i2;
+
+  const int ix0 = _mm_cvtsi128_si32(lo), iy0 = _mm_cvtsi128_si32(_mm_shuffle_epi32(lo, 0x55));
+  const int colsM1 = _mm_cvtsi128_si32(dims);
+  const int rowsM1 = _mm_cvtsi128_si32(_mm_shuffle_epi32(dims, 0x55));
+  const __m128i spanOk = _mm_cmplt_epi32(_mm_sub_epi32(mx, mn), _mm_set1_epi32(kSmallSpan));
+  if ((_mm_movemask_ps(_mm_castsi128_ps(spanOk)) & 3) != 3 ||
+      ix0 + (colsM1 | 3) >= fc.width) {  // too large, or the last 4-pixel chunk leaves the row
+    c.id = id;
+    rasterTriangle<true, Shade::None, Greater>(c, makeSVert(win[i0], fixed[i0], nullptr),
+                                               makeSVert(win[j1], fixed[j1], nullptr),
+                                               makeSVert(win[j2], fixed[j2], nullptr), area);
+    return;
+  }
+
+  // Edge functions at the centres of pixels ix0..ix0+3 of row iy0, with pmaddwd on 16-bit
+  // coordinates relative to v0: r1 = v1 - v0, r2 = v2 - v0, rc = centre of (ix0, iy0) - v0.
+  // Edge k (opposite vertex k) runs from a = (1, 2, 0)[k] to b = (2, 0, 1)[k] of the triangle
+  // as given; pair k of the vectors below belongs to edge k (pair 3 is zero). For a clockwise
+  // triangle, (A, B) and so E change sign: the edges of (v0, v2, v1), exactly.
+  const __m128i centre = _mm_add_epi32(_mm_slli_epi32(lo, kSubpixelBits), _mm_set1_epi32(kHalf));
+  const __m128i v = _mm_packs_epi32(
+      _mm_unpacklo_epi64(_mm_sub_epi32(p1, p0), _mm_sub_epi32(p2, p0)),
+      _mm_unpacklo_epi64(_mm_sub_epi32(centre, p0), _mm_setzero_si128()));
+  const __m128i ra = _mm_shuffle_epi32(v, _MM_SHUFFLE(3, 3, 1, 0));  // r1, r2, 0
+  const __m128i rb = _mm_shuffle_epi32(v, _MM_SHUFFLE(3, 0, 3, 1));  // r2, 0, r1
+  const __m128i rc = _mm_shuffle_epi32(v, _MM_SHUFFLE(3, 2, 2, 2));
+  const __m128i dv = _mm_sub_epi16(rb, ra);  // (Xb - Xa, Yb - Ya)
+  // (A, B) = (Ya - Yb, Xb - Xa): swap each pair, negate its first element (both if flipped).
+  const __m128i neg = _mm_xor_si128(_mm_setr_epi16(-1, 0, -1, 0, -1, 0, -1, 0),
+                                    _mm_set1_epi16(int16_t(-int(flip))));
+  const __m128i sw = _mm_shufflehi_epi16(_mm_shufflelo_epi16(dv, _MM_SHUFFLE(2, 3, 0, 1)),
+                                         _MM_SHUFFLE(2, 3, 0, 1));
+  const __m128i ab = _mm_sub_epi16(_mm_xor_si128(sw, neg), neg);
+  const __m128i o = _mm_sub_epi16(rc, ra);  // (px - Xa, py - Ya)
+  const __m128i sx = _mm_madd_epi16(ab, _mm_setr_epi16(kOne, 0, kOne, 0, kOne, 0, kOne, 0));
+  const __m128i sy = _mm_madd_epi16(ab, _mm_setr_epi16(0, kOne, 0, kOne, 0, kOne, 0, kOne));
+  // Bias -1 unless top-left (A > 0, or A == 0 and B < 0), so that "inside" is E >= 0.
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i topLeft = _mm_or_si128(
+      _mm_cmpgt_epi32(sx, zero), _mm_and_si128(_mm_cmpeq_epi32(sx, zero), _mm_cmpgt_epi32(zero, sy)));
+  const __m128i bias = _mm_andnot_si128(topLeft, _mm_set1_epi32(-1));
+  const __m128i colOffset = _mm_setr_epi16(0, 0, kOne, 0, 2 * kOne, 0, 3 * kOne, 0);
+  auto edge = [&](auto sel) {  // lane l: edge function at column ix0 + l, row iy0
+    constexpr int s = decltype(sel)::value;
+    return _mm_add_epi32(_mm_madd_epi16(_mm_shuffle_epi32(ab, s),
+                                        _mm_add_epi16(_mm_shuffle_epi32(o, s), colOffset)),
+                         _mm_shuffle_epi32(bias, s));
+  };
+  __m128i e0 = edge(std::integral_constant<int, 0x00>());
+  __m128i e1 = edge(std::integral_constant<int, 0x55>());
+  __m128i e2 = edge(std::integral_constant<int, 0xAA>());
+  const __m128i s0 = _mm_shuffle_epi32(sy, 0x00), s1 = _mm_shuffle_epi32(sy, 0x55);
+  const __m128i s2 = _mm_shuffle_epi32(sy, 0xAA);
+  // Depth plane, as in rasterTriangle (vertices v0, v1, v2 in counter-clockwise order).
+  double z00, dzdx, dzdy;
+  auto depthPlane = [&] {
+    const SVert v0 = makeSVert(win[i0], fixed[i0], nullptr);
+    const SVert v1 = makeSVert(win[j1], fixed[j1], nullptr);
+    const SVert v2 = makeSVert(win[j2], fixed[j2], nullptr);
+    depthAt(makePlane(v0, v1, v2, area), v0, v1, v2, ix0, iy0, z00, dzdx, dzdy);
+  };
+  const __m128 zero4 = _mm_setzero_ps(), one4 = _mm_set1_ps(1.0f);
+  const __m128i idv = _mm_set1_epi32(int(id));
+  float* const d = c.depth + size_t(iy0) * size_t(c.width) + size_t(ix0);
+  uint32_t* const it = c.item + size_t(iy0) * size_t(c.width) + size_t(ix0);
+  // Depth test and write of the 4 pixels at d[off], it[off] (lanes of `in` all ones).
+  auto blend = [&](size_t off, __m128 z, __m128i in) {
+    const __m128 dOld = _mm_loadu_ps(d + off);
+    const __m128 pass = _mm_and_ps(Greater ? _mm_cmplt_ps(dOld, z) : _mm_cmplt_ps(z, dOld),
+                                   _mm_castsi128_ps(in));
+    _mm_storeu_ps(d + off, _mm_or_ps(_mm_and_ps(pass, z), _mm_andnot_ps(pass, dOld)));
+    const __m128i p = _mm_castps_si128(pass);
+    const __m128i iOld = _mm_loadu_si128(reinterpret_cast<const __m128i*>(it + off));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(it + off),
+                     _mm_or_si128(_mm_and_si128(p, idv), _mm_andnot_si128(p, iOld)));
+  };
+  auto clamp01 = [&](__m128 z) { return _mm_min_ps(_mm_max_ps(z, zero4), one4); };
+  const __m128 lanes4 = _mm_set_ps(3.0f, 2.0f, 1.0f, 0.0f);
+
+  if (colsM1 < 4 && rowsM1 < kSmallRows) {
+    // One chunk per row: coverage of the whole box first, branch-free (lanes beyond the box
+    // masked), then the depth plane only if some centre is covered.
+    const __m128i colValid = _mm_cmpgt_epi32(_mm_shuffle_epi32(dims, 0x00), _mm_setr_epi32(-1, 0, 1, 2));
+    const __m128i rowsM1v = _mm_shuffle_epi32(dims, 0x55);
+    __m128i in[kSmallRows];
+    __m128i any = zero;
+    for (int r = 0; r < kSmallRows; ++r) {
+      const __m128i out = _mm_srai_epi32(_mm_or_si128(_mm_or_si128(e0, e1), e2), 31);
+      const __m128i valid = _mm_and_si128(colValid, _mm_cmpgt_epi32(rowsM1v, _mm_set1_epi32(r - 1)));
+      in[r] = _mm_andnot_si128(out, valid);
+      any = _mm_or_si128(any, in[r]);
+      e0 = _mm_add_epi32(e0, s0), e1 = _mm_add_epi32(e1, s1), e2 = _mm_add_epi32(e2, s2);
+    }
+    if (!_mm_movemask_epi8(any)) return;
+    depthPlane();
+    // Row r starts at depthRowStart(.., r) (cvtpd2ps rounds like float(double)), its pixel l
+    // at clamp(start + float(dzdx)*l).
+    const __m128d zz = _mm_set1_pd(z00), dy = _mm_set1_pd(dzdy);
+    const __m128 zr = _mm_movelh_ps(
+        _mm_cvtpd_ps(_mm_add_pd(zz, rounded(_mm_mul_pd(dy, _mm_set_pd(1.0, 0.0))))),
+        _mm_cvtpd_ps(_mm_add_pd(zz, rounded(_mm_mul_pd(dy, _mm_set_pd(3.0, 2.0))))));
+    const __m128 dz = rounded(_mm_mul_ps(_mm_set1_ps(float(dzdx)), lanes4));
+    auto rowZ = [&](__m128 start) { return clamp01(_mm_add_ps(start, dz)); };
+    const size_t w = size_t(c.width);
+    blend(0, rowZ(_mm_shuffle_ps(zr, zr, 0x00)), in[0]);
+    if (rowsM1 > 0) blend(w, rowZ(_mm_shuffle_ps(zr, zr, 0x55)), in[1]);
+    if (rowsM1 > 1) blend(2 * w, rowZ(_mm_shuffle_ps(zr, zr, 0xAA)), in[2]);
+    if (rowsM1 > 2) blend(3 * w, rowZ(_mm_shuffle_ps(zr, zr, 0xFF)), in[3]);
+    return;
+  }
+
+  // Rows of up to 16 chunks of 4 pixels; every chunk of the box is blended (masked), as in
+  // rasterTriangle.
+  depthPlane();
+  const __m128 dz4 = _mm_set1_ps(float(dzdx)), four4 = _mm_set1_ps(4.0f);
+  const __m128i c0 = _mm_shuffle_epi32(sx, 0x00), c1 = _mm_shuffle_epi32(sx, 0x55);
+  const __m128i c2 = _mm_shuffle_epi32(sx, 0xAA);
+  const __m128i x0 = _mm_slli_epi32(c0, 2), x1 = _mm_slli_epi32(c1, 2), x2 = _mm_slli_epi32(c2, 2);
+  const __m128i colsM1v = _mm_shuffle_epi32(dims, 0x00);
+  const int chunks = (colsM1 >> 2) + 1;
+  size_t rowOff = 0;
+  for (int r = 0; r <= rowsM1; ++r, rowOff += size_t(c.width)) {
+    const __m128 zr4 = _mm_set1_ps(depthRowStart(z00, dzdy, double(r)));
+    __m128i f0 = e0, f1 = e1, f2 = e2;
+    e0 = _mm_add_epi32(e0, s0), e1 = _mm_add_epi32(e1, s1), e2 = _mm_add_epi32(e2, s2);
+    __m128 fk = lanes4;
+    __m128i col = _mm_setr_epi32(-1, 0, 1, 2);  // column - 1 of each lane
+    for (int k = 0; k < chunks; ++k) {
+      const __m128i out = _mm_srai_epi32(_mm_or_si128(_mm_or_si128(f0, f1), f2), 31);
+      const __m128i in = _mm_andnot_si128(out, _mm_cmpgt_epi32(colsM1v, col));
+      blend(rowOff + size_t(4 * k), clamp01(_mm_add_ps(zr4, rounded(_mm_mul_ps(dz4, fk)))), in);
+      f0 = _mm_add_epi32(f0, x0), f1 = _mm_add_epi32(f1, x1), f2 = _mm_add_epi32(f2, x2);
+      fk = _mm_add_ps(fk, four4);
+      col = _mm_add_epi32(col, _mm_set1_epi32(4));
+    }
+  }
+}
+#endif
 
 // A polygon vertex during clipping.
 struct CVert {
@@ -520,25 +755,34 @@ void fill32(uint32_t* p, size_t n, uint32_t value) {
   for (; i < n; ++i) p[i] = value;
 }
 
-// Largest of n indices.
-uint32_t maxIndex(const uint32_t* idx, size_t n) {
-  uint32_t m = 0;
+// Whether all n indices are below `limit` (vertexCount, >= 1).
+bool indicesBelow(const uint32_t* idx, size_t n, size_t limit) {
+  if (limit > 0xFFFFFFFFu) return true;
+  const uint32_t last = uint32_t(limit - 1);  // largest valid index
   size_t i = 0;
 #if RASTER_SSE2
-  // Unsigned max through signed compares of values offset by 2^31.
+  // Unsigned compares through signed ones of values offset by 2^31; four independent
+  // accumulators of "some index > last".
   const __m128i flip = _mm_set1_epi32(int(0x80000000u));
-  __m128i mv = flip;  // = 0 offset
-  for (; i + 4 <= n; i += 4) {
-    const __m128i x = _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(idx + i)), flip);
-    const __m128i gt = _mm_cmpgt_epi32(x, mv);
-    mv = _mm_or_si128(_mm_and_si128(gt, x), _mm_andnot_si128(gt, mv));
+  const __m128i bound = _mm_xor_si128(_mm_set1_epi32(int(last)), flip);
+  __m128i bad0 = _mm_setzero_si128(), bad1 = bad0, bad2 = bad0, bad3 = bad0;
+  auto over = [&](size_t k) {
+    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(idx + k));
+    return _mm_cmpgt_epi32(_mm_xor_si128(x, flip), bound);
+  };
+  for (; i + 16 <= n; i += 16) {
+    bad0 = _mm_or_si128(bad0, over(i));
+    bad1 = _mm_or_si128(bad1, over(i + 4));
+    bad2 = _mm_or_si128(bad2, over(i + 8));
+    bad3 = _mm_or_si128(bad3, over(i + 12));
   }
-  alignas(16) uint32_t lanes[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(lanes), _mm_xor_si128(mv, flip));
-  m = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+  for (; i + 4 <= n; i += 4) bad0 = _mm_or_si128(bad0, over(i));
+  if (_mm_movemask_epi8(_mm_or_si128(_mm_or_si128(bad0, bad1), _mm_or_si128(bad2, bad3))))
+    return false;
 #endif
+  uint32_t m = 0;
   for (; i < n; ++i) m = std::max(m, idx[i]);
-  return m;
+  return m <= last;
 }
 
 // The triangle loop: trivial reject, fast unclipped setup or clipping.
@@ -568,13 +812,48 @@ void drawAll(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* indi
   }
 }
 
+#if RASTER_SSE2
+// The item+depth path's triangle loop: the pipeline of drawAll<true, ...>, with the unclipped
+// triangles set up by fastTriangle straight from the vertex stage's arrays.
+template <bool Greater>
+void drawAllFast(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* indices,
+                 size_t triangleCount, const uint32_t* ids, const glm::vec4* win,
+                 const glm::ivec2* fixed, const uint16_t* codes) {
+  FastCtx fc;
+  fc.clipLo = _mm_setr_epi32(c.x0, c.y0, 0, 0);
+  fc.clipHi = _mm_setr_epi32(c.x1, c.y1, 0, 0);
+  fc.width = c.width;
+  for (size_t t = 0; t < triangleCount; ++t) {
+    uint32_t vi[3];
+    if (indices) {
+      vi[0] = indices[3 * t], vi[1] = indices[3 * t + 1], vi[2] = indices[3 * t + 2];
+    } else {
+      vi[0] = uint32_t(3 * t), vi[1] = uint32_t(3 * t + 1), vi[2] = uint32_t(3 * t + 2);
+    }
+    const uint32_t o0 = codes[vi[0]], o1 = codes[vi[1]], o2 = codes[vi[2]];
+    if (o0 & o1 & o2) continue;  // entirely outside one plane
+    const uint32_t id = ids ? ids[t] : uint32_t(t);
+    if (((o0 | o1 | o2) & kClipBits) == 0) {
+      fastTriangle<Greater>(c, fc, win, fixed, vi[0], vi[1], vi[2], id);
+    } else {
+      c.id = id;
+      clipAndDraw<true, Shade::None, Greater>(c, f, clip, win, fixed, codes, nullptr, vi);
+    }
+  }
+}
+#endif
+
 // Picks the instantiation of the pipeline for the path, the shading and the depth function.
 template <bool Greater>
 void dispatch(bool fast, Shade shade, Ctx& c, const Frame& f, const glm::vec4* clip,
               const uint32_t* indices, size_t count, const uint32_t* ids, const glm::vec4* colors,
               const glm::vec4* win, const glm::ivec2* fixed, const uint16_t* codes) {
   if (fast)
+#if RASTER_SSE2
+    drawAllFast<Greater>(c, f, clip, indices, count, ids, win, fixed, codes);
+#else
     drawAll<true, Shade::None, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
+#endif
   else if (shade == Shade::None)
     drawAll<false, Shade::None, Greater>(c, f, clip, indices, count, ids, colors, win, fixed, codes);
   else if (shade == Shade::Flat)
@@ -642,7 +921,7 @@ void drawTriangles(Target& target, const State& state, const glm::vec4* clip, si
       (!target.hits.empty() && target.hits.size() != pixels))
     throw std::invalid_argument("raster::drawTriangles: target buffers do not match its size");
   if (indices) {
-    if (maxIndex(indices, 3 * triangleCount) >= vertexCount)
+    if (!indicesBelow(indices, 3 * triangleCount, vertexCount))
       throw std::out_of_range("raster::drawTriangles: vertex index out of range");
   } else {
     triangleCount = std::min(triangleCount, vertexCount / 3);

@@ -609,6 +609,130 @@ TEST(Raster, FastPathMatchesGenericPath) {
   }
 }
 
+// A grid mesh tiling a w x h window, cells of about `spacing` pixels (triangles from sub-pixel
+// to a few hundred pixels), random diagonals and windings. If `snapped`, the grid lines are
+// multiples of spacing (a multiple of 0.5: many edges through pixel centres) and w is a power
+// of 2 per vertex, so that window positions are exact; otherwise vertices are jittered and w
+// random; times wScale (a power of 2). NDC depth z, or z = near in clip space (reversed [0, 1]
+// depth: depth = near/w) if near > 0. Item ids count from firstId.
+void addGrid(Mesh& m, std::mt19937& rng, int w, int h, double spacing, bool snapped, double z,
+             float near, float wScale, uint32_t firstId) {
+  const int nx = int(std::ceil(w / spacing)) + 1, ny = int(std::ceil(h / spacing)) + 1;
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3), wdist(0.5, 3.0);
+  std::uniform_int_distribution<int> coin(0, 1), pow2(-1, 2);
+  const uint32_t base = uint32_t(m.clip.size());
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      double x = std::min(i * spacing, double(w)), y = std::min(j * spacing, double(h));
+      if (!snapped && i > 0 && i < nx - 1) x += jitter(rng) * spacing;
+      if (!snapped && j > 0 && j < ny - 1) y += jitter(rng) * spacing;
+      const float cw = wScale * (snapped ? std::ldexp(1.0f, pow2(rng)) : float(wdist(rng)));
+      glm::vec4 v = windowToClip(x, y, z, w, h, cw);
+      if (near > 0) v.z = near;
+      m.clip.push_back(v);
+    }
+  }
+  uint32_t id = firstId;
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const uint32_t a = base + j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
+      uint32_t t[2][3] = {{a, b, c}, {a, c, d}};
+      if (coin(rng)) t[0][2] = d, t[1][0] = b;  // the other diagonal: (a, b, d), (b, c, d)
+      for (auto& tri : t) {
+        if (coin(rng)) std::swap(tri[1], tri[2]);
+        m.idx.insert(m.idx.end(), {tri[0], tri[1], tri[2]});
+        m.ids.push_back(id++);
+      }
+    }
+}
+
+// The fast path's setups for small triangles (whole-box coverage with 16-bit coordinates, and
+// rows of chunks) against the generic path on fine meshes: identical items and depths, and a
+// single layer covers every pixel exactly once. Two overlapping layers, both depth
+// conventions, culling, scissor, and target widths that are not multiples of 4 (or below 4).
+TEST(Raster, FastPathMatchesGenericPathOnFineMeshes) {
+  struct Case {
+    int w, h;
+    double spacing;
+    bool snapped, reversed, cull, scissor;
+  };
+  const Case cases[] = {
+      {101, 67, 0.5, true, true, false, false},   {101, 67, 0.7, false, true, false, false},
+      {101, 67, 1.5, true, true, false, false},   {101, 67, 2.3, false, true, false, false},
+      {96, 64, 1.0, true, false, false, false},   {96, 64, 1.3, false, false, false, false},
+      {96, 64, 9.5, true, true, false, false},    {53, 70, 30.0, false, false, false, false},
+      {53, 70, 70.0, false, true, false, false},  {101, 67, 1.7, false, true, true, false},
+      {101, 67, 1.5, true, true, false, true},    {101, 67, 1.1, false, false, false, true},
+      {101, 67, 7.0, true, true, false, true},    {101, 67, 13.3, false, true, false, true},
+      {3, 9, 0.5, true, true, false, false},      {6, 5, 0.6, false, false, false, false},
+      {256, 128, 1.9, false, true, false, false}, {256, 128, 2.0, true, true, false, false}};
+  std::mt19937 rng(2024);
+  for (const Case& k : cases) {
+    SCOPED_TRACE(::testing::Message() << k.w << "x" << k.h << " spacing " << k.spacing
+                                      << (k.snapped ? " snapped" : "") << (k.reversed ? " reversed" : "")
+                                      << (k.cull ? " cull" : "") << (k.scissor ? " scissor" : ""));
+    const float near = k.reversed ? 1e-3f : 0.0f;
+    Mesh layer0, layer1, both;
+    // Layer 1 is nearer in both conventions: smaller NDC z, and smaller w (larger near/w).
+    addGrid(layer0, rng, k.w, k.h, k.spacing, k.snapped, 0.1, near, 16.0f, 0);
+    addGrid(layer1, rng, k.w, k.h, k.spacing * 1.5, k.snapped, -0.2, near, 1.0f,
+            uint32_t(layer0.triangles()));
+    both = layer1;
+    const uint32_t shift = uint32_t(both.clip.size());
+    both.clip.insert(both.clip.end(), layer0.clip.begin(), layer0.clip.end());
+    for (uint32_t i : layer0.idx) both.idx.push_back(i + shift);
+    both.ids.insert(both.ids.end(), layer0.ids.begin(), layer0.ids.end());
+
+    State s;
+    if (k.reversed) {
+      s.depthFunc = raster::DepthFunc::Greater;
+      s.clipDepth = raster::ClipDepth::ZeroToOne;
+    }
+    if (k.cull) s.cull = Cull::Back;
+    if (k.scissor) {
+      s.scissorTest = true;
+      s.scissor = {7, 5, k.w - 20, k.h - 9};
+    }
+    const float clearTo = k.reversed ? 0.0f : 1.0f;
+    for (const Mesh* m : {&layer0, &both}) {
+      Target fast = makeTarget(k.w, k.h, false);
+      Target generic = makeTarget(k.w, k.h, true);  // the hits hook forces the generic path
+      fast.clearDepth(clearTo);
+      generic.clearDepth(clearTo);
+      draw(fast, s, *m);
+      draw(generic, s, *m);
+      ASSERT_EQ(fast.item, generic.item);
+      ASSERT_EQ(fast.depth, generic.depth);
+      if (m == &layer0 && !k.cull) {
+        for (int y = 0; y < k.h; ++y)
+          for (int x = 0; x < k.w; ++x) {
+            const bool inside = !k.scissor || (x >= s.scissor.x && x < s.scissor.x + s.scissor.width &&
+                                               y >= s.scissor.y && y < s.scissor.y + s.scissor.height);
+            ASSERT_EQ(generic.hits[generic.index(x, y)], inside ? 1u : 0u) << x << "," << y;
+            ASSERT_EQ(fast.item[fast.index(x, y)] != kNoItem, inside) << x << "," << y;
+          }
+      }
+    }
+    // The nearer layer wins wherever it covers a pixel, whatever the order of submission.
+    Target ab = makeTarget(k.w, k.h, false), ba = makeTarget(k.w, k.h, false);
+    Target near1 = makeTarget(k.w, k.h, false);
+    ab.clearDepth(clearTo);
+    ba.clearDepth(clearTo);
+    near1.clearDepth(clearTo);
+    draw(ab, s, both);
+    draw(ba, s, layer0);
+    draw(ba, s, layer1);
+    draw(near1, s, layer1);
+    ASSERT_EQ(ab.item, ba.item);
+    ASSERT_EQ(ab.depth, ba.depth);
+    for (size_t i = 0; i < ab.item.size(); ++i) {
+      if (near1.item[i] != kNoItem) {
+        ASSERT_EQ(ab.item[i], near1.item[i]) << "pixel " << i;
+      }
+    }
+  }
+}
+
 // Reversed depth (clear to 0, test GREATER): the largest depth wins whatever the order.
 TEST(Raster, DepthFuncGreater) {
   constexpr int W = 16, H = 16;
