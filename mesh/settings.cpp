@@ -19,6 +19,8 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
   s.overshoot = pick(flags.overshoot, file.overshoot, 1.0);
   s.exposure = flags.exposure ? flags.exposure : file.exposure;
+  s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, 64);
+  s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, 4);
   return s;
 }
 

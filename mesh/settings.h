@@ -22,6 +22,8 @@ struct Settings {
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = 1;      ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
+  int emitterSamples = 64;   ///< at least this many shooting points on an emitting patch
+  int shooterSamples = 4;    ///< on any other patch
 
   MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge}; }
 };

@@ -12,6 +12,8 @@
 namespace rad {
 namespace {
 
+/// Overlaps below this share of an element are round-off at a part's edge.
+constexpr double kNegligibleOverlap = 1e-12;
 /// Recompute the running unshot total this often, so its round-off cannot drift.
 constexpr long kResumEvery = 256;
 
@@ -43,21 +45,25 @@ void subdivideTriangles(const glm::dvec3& a, const glm::dvec3& b, const glm::dve
   subdivideTriangles(ab, bc, ca, k - 1, out);
 }
 
-/// The part containing x (or, at round-off on a shared edge, the one whose centroid is nearest).
-size_t nearestPart(const std::vector<std::array<glm::dvec3, 3>>& parts, const glm::dvec3& x) {
-  size_t best = 0;
-  double bestDistance = HUGE_VAL;
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const auto& t = parts[i];
-    glm::dvec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
-    bool inside = glm::dot(glm::cross(t[1] - t[0], x - t[0]), n) >= 0 &&
-                  glm::dot(glm::cross(t[2] - t[1], x - t[1]), n) >= 0 &&
-                  glm::dot(glm::cross(t[0] - t[2], x - t[2]), n) >= 0;
-    if (inside) return i;
-    double d = glm::length((t[0] + t[1] + t[2]) / 3.0 - x);
-    if (d < bestDistance) bestDistance = d, best = i;
+/// Area of the part of the triangle `element` inside the coplanar triangle `part` (normal n):
+/// the element clipped by the part's three edges (Sutherland–Hodgman).
+double overlapArea(const std::array<glm::dvec3, 3>& element, const std::array<glm::dvec3, 3>& part,
+                   const glm::dvec3& n) {
+  std::vector<glm::dvec3> poly(element.begin(), element.end()), next;
+  for (int k = 0; k < 3 && poly.size() >= 3; ++k) {
+    glm::dvec3 a = part[k], inward = glm::cross(n, part[(k + 1) % 3] - a);
+    next.clear();
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const glm::dvec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+      double dp = glm::dot(p - a, inward), dq = glm::dot(q - a, inward);
+      if (dp >= 0) next.push_back(p);
+      if ((dp >= 0) != (dq >= 0)) next.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    poly.swap(next);
   }
-  return best;
+  glm::dvec3 twice(0.0);
+  for (size_t i = 1; i + 1 < poly.size(); ++i) twice += glm::cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
+  return 0.5 * std::abs(glm::dot(twice, n));
 }
 
 }  // namespace
@@ -96,10 +102,20 @@ std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int mi
     out[i].point = (parts[i][0] + parts[i][1] + parts[i][2]) / 3.0;
     out[i].normal = p.normal;
   }
+  // Each element shares its power among the parts by overlap area, so that a uniform patch
+  // shoots the same power from every part, and every element's weights sum to 1.
+  const glm::dvec3 plane =
+      glm::normalize(glm::cross(p.corners[1] - p.corners[0], p.corners[2] - p.corners[0]));
+  std::vector<double> overlap(parts.size());
   for (int e : p.elements) {
-    size_t part = nearestPart(parts, mesh.centroid(e));
-    out[part].elements.push_back(e);
-    out[part].weights.push_back(1.0);
+    auto c = mesh.corners(e);
+    double sum = 0;
+    for (size_t i = 0; i < parts.size(); ++i) sum += overlap[i] = overlapArea(c, parts[i], plane);
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (!(overlap[i] > kNegligibleOverlap * sum)) continue;
+      out[i].elements.push_back(e);
+      out[i].weights.push_back(overlap[i] / sum);
+    }
   }
   out.erase(std::remove_if(out.begin(), out.end(),
                            [](const ShooterSample& s) { return s.elements.empty(); }),

@@ -56,7 +56,7 @@ struct SolverOptions {
   long maxShots = 0;         ///< 0: no limit
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
-  int emitterSamples = 16;   ///< at least this many points on an emitting patch
+  int emitterSamples = 64;   ///< at least this many points on an emitting patch
   int shooterSamples = 4;    ///< at least this many points on any other patch
 };
 

@@ -8,6 +8,9 @@
 #include "mesh/scene.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/reference_solver.h"
+#include "radiosity/result.h"
+#include "radiosity/point_polygon.h"
+#include "mesh/settings.h"
 
 namespace rad {
 namespace {
@@ -263,6 +266,75 @@ TEST(ScaleTest, RadiosityIsScaleInvariant) {
         ASSERT_NEAR(scaled[e][k], unit[e][k], 1e-6 * std::abs(unit[e][k]) + 1e-300)
             << "scale " << s << ", element " << e;
   }
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// scenes/penumbra.json: a 100×100 light 200 above the floor, a 40×40 black square 100 above
+/// it. The exact direct factor from a floor point x is the light's minus that of the part of
+/// it the square hides, which is the light ∩ the square projected from x (scale 2).
+double visibleLightFactor(const glm::dvec3& x) {
+  auto rect = [](double x0, double x1, double z0, double z1) {
+    return std::vector<glm::dvec3>{{x0, 200, z0}, {x1, 200, z0}, {x1, 200, z1}, {x0, 200, z1}};
+  };
+  const glm::dvec3 up(0, 1, 0);
+  double f = pointPolygonFormFactor(x, up, rect(-50, 50, -50, 50));
+  double x0 = std::max(-50.0, -40 - x.x), x1 = std::min(50.0, 40 - x.x);
+  double z0 = std::max(-50.0, -40 - x.z), z1 = std::min(50.0, 40 - x.z);
+  if (x0 < x1 && z0 < z1) f -= pointPolygonFormFactor(x, up, rect(x0, x1, z0, z1));
+  return f;
+}
+
+TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
+  Scene scene = loadScene(kScenes + "penumbra.json");
+  Settings settings = resolveSettings(scene, SolverBlock{});
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  SolverOptions options;
+  options.emitterSamples = settings.emitterSamples;
+  ProgressiveSolver solver(mesh, factors, options);
+  solver.run();  // only the light has power to shoot: the rest is black or sees nothing
+  // The displayed (Gouraud) radiosity at floor vertices along the line z = 0 across the shadow.
+  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, solver.radiosity());
+  const double rho = 0.5, L = settings.maxElementEdge;
+  const std::vector<glm::dvec3> light = {{-50, 200, -50}, {50, 200, -50}, {50, 200, 50}, {-50, 200, 50}};
+  std::vector<std::pair<double, double>> solved, exact;  // (x, B / B unoccluded)
+  int compared = 0;
+  for (auto v : mesh.mesh.vertices()) {
+    glm::dvec3 p = PatchMesh::toGlm(mesh.mesh.point(v));
+    auto f = *mesh.mesh.vf_range(v).begin();
+    if (scene.surfaces[mesh.surface(f.idx())].name != "floor") continue;
+    if (std::abs(p.z) > L || std::abs(p.x) > 140) continue;
+    double expected = rho * visibleLightFactor(p);
+    double open = rho * pointPolygonFormFactor(p, {0, 1, 0}, light);
+    double B = vertexB[v.idx()].x;
+    solved.push_back({p.x, B / open});
+    exact.push_back({p.x, expected / open});
+    if (expected > 0.2 * open) {
+      EXPECT_NEAR(B / expected, 1.0, 0.05) << "at x = " << p.x << ", z = " << p.z;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 20);
+  // Where the penumbra reaches three quarters of the full light: as similar triangles put it,
+  // within two elements.
+  auto crossing = [](std::vector<std::pair<double, double>> v) {
+    std::sort(v.begin(), v.end());
+    double at = 0;
+    for (size_t i = 0; i + 1 < v.size(); ++i)
+      if (v[i].first > 0 && v[i].second < 0.75 && v[i + 1].second >= 0.75) at = v[i].first;
+    return at;
+  };
+  double xs = crossing(solved), xe = crossing(exact);
+  EXPECT_GT(xe, 20);
+  EXPECT_NEAR(xs, xe, 2 * L);
+  // Beyond x = 90 (light edge, past the square's edge, to the floor) the whole light is seen.
+  for (const auto& [x, ratio] : solved)
+    if (std::abs(x) > 90 + 2 * L) EXPECT_NEAR(ratio, 1.0, 0.05) << "at x = " << x;
 }
 
 }  // namespace

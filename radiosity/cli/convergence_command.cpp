@@ -106,6 +106,8 @@ void runConvergence(const ConvergenceOptions& o) {
   printWarnings(scene.warnings);
   printWarnings(mesh.warnings);
   SolverOptions options;
+  options.emitterSamples = settings.emitterSamples;
+  options.shooterSamples = settings.shooterSamples;
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
 
   auto t0 = std::chrono::steady_clock::now();

@@ -66,6 +66,8 @@ void runSolve(const SolveOptions& o) {
   printWarnings(mesh.warnings);
 
   SolverOptions options;
+  options.emitterSamples = settings.emitterSamples;
+  options.shooterSamples = settings.shooterSamples;
   options.tolerance = settings.tolerance;
   options.maxShots = settings.maxShots;
   options.timeLimit = settings.timeLimit;
