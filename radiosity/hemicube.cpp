@@ -142,15 +142,20 @@ void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation
   }
   // Only triangles reaching above the base plane can show on any face: often half the scene
   // is behind the point, and no face needs to look at it.
-  drawIndices_.clear();
-  drawIds_.clear();
+  drawIndices_.resize(I.size());
+  drawIds_.resize(ids_.size());
+  size_t kept = 0;
   for (size_t e = 0; e < ids_.size(); ++e) {
     uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
     if (local_[a][2] > 0 || local_[b][2] > 0 || local_[c][2] > 0) {
-      drawIndices_.insert(drawIndices_.end(), {a, b, c});
-      drawIds_.push_back(ids_[e]);
+      drawIndices_[3 * kept] = a;
+      drawIndices_[3 * kept + 1] = b;
+      drawIndices_[3 * kept + 2] = c;
+      drawIds_[kept++] = ids_[e];
     }
   }
+  drawIndices_.resize(3 * kept);
+  drawIds_.resize(kept);
 }
 
 void Hemicube::faceClip(int face, std::vector<glm::vec4>& clip) const {
