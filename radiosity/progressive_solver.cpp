@@ -17,20 +17,6 @@ constexpr double kNegligibleOverlap = 1e-12;
 /// Recompute the running unshot total this often, so its round-off cannot drift.
 constexpr long kResumEvery = 256;
 
-/// Centroids of the 4ᵏ triangles of k-fold midpoint subdivision of (a, b, c).
-void subdivide(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int k,
-               std::vector<glm::dvec3>& out) {
-  if (k == 0) {
-    out.push_back((a + b + c) / 3.0);
-    return;
-  }
-  glm::dvec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
-  subdivide(a, ab, ca, k - 1, out);
-  subdivide(ab, b, bc, k - 1, out);
-  subdivide(ca, bc, c, k - 1, out);
-  subdivide(ab, bc, ca, k - 1, out);
-}
-
 /// The 4ᵏ triangles of k-fold midpoint subdivision of (a, b, c).
 void subdivideTriangles(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int k,
                         std::vector<std::array<glm::dvec3, 3>>& out) {
@@ -80,26 +66,26 @@ std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int mi
   const Patch& p = mesh.patches[patch];
   const int n = int(p.elements.size());
   std::vector<ShooterSample> out;
-  std::vector<glm::dvec3> points;
+  std::vector<std::array<glm::dvec3, 3>> parts;
+  auto centroid = [](const std::array<glm::dvec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; };
   if (n < minimum) {
     int k = 0;
     while (n << (2 * k) < minimum) ++k;
     for (int e : p.elements) {
       auto c = mesh.corners(e);
-      points.clear();
-      subdivide(c[0], c[1], c[2], k, points);
-      for (const auto& q : points)
-        out.push_back({{e}, {1.0 / double(points.size())}, q, mesh.normal(e)});
+      parts.clear();
+      subdivideTriangles(c[0], c[1], c[2], k, parts);
+      for (const auto& t : parts)
+        out.push_back({{e}, {1.0 / double(parts.size())}, centroid(t), mesh.normal(e)});
     }
     return out;
   }
   int k = 0;
   while ((1 << (2 * k)) < minimum) ++k;
-  std::vector<std::array<glm::dvec3, 3>> parts;
   subdivideTriangles(p.corners[0], p.corners[1], p.corners[2], k, parts);
   out.resize(parts.size());
   for (size_t i = 0; i < parts.size(); ++i) {
-    out[i].point = (parts[i][0] + parts[i][1] + parts[i][2]) / 3.0;
+    out[i].point = centroid(parts[i]);
     out[i].normal = p.normal;
   }
   // Each element shares its power among the parts by overlap area, so that a uniform patch

@@ -5,7 +5,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
+#include "mesh/settings.h"
+#include "radiosity/progressive_solver.h"
 
 namespace rad::cli {
 
@@ -25,6 +28,18 @@ Command addMeshCommand(CLI::App& app);
 Command addFormFactorsCommand(CLI::App& app);
 Command addSolveCommand(CLI::App& app);
 Command addConvergenceCommand(CLI::App& app);
+
+/// A scene loaded, checked to have an emitter, its settings resolved and meshed (warnings
+/// printed): what every solving command starts from.
+struct SolvableScene {
+  Scene scene;
+  Settings settings;
+  PatchMesh mesh;
+};
+SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags);
+
+/// The solver options the settings give.
+SolverOptions solverOptions(const Settings& settings);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

@@ -98,16 +98,11 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
 void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
-  Scene scene = loadScene(o.scene);
-  if (!scene.hasEmitter())
-    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission", "none");
-  Settings settings = resolveSettings(scene, o.flags);
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
-  SolverOptions options;
-  options.emitterSamples = settings.emitterSamples;
-  options.shooterSamples = settings.shooterSamples;
+  SolvableScene solvable = loadSolvable(o.scene, o.flags);
+  const Scene& scene = solvable.scene;
+  const Settings& settings = solvable.settings;
+  const PatchMesh& mesh = solvable.mesh;
+  SolverOptions options = solverOptions(settings);
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
 
   auto t0 = std::chrono::steady_clock::now();

@@ -34,6 +34,29 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
       ->check(CLI::Range(1, 65536));
 }
 
+SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
+  SolvableScene s{loadScene(path), {}, {}};
+  if (!s.scene.hasEmitter())
+    throw inputError(s.scene.path + ": surfaces", "at least one surface whose material has an emission",
+                     "none (radiosity light comes from emitting surfaces)");
+  s.settings = resolveSettings(s.scene, flags);
+  s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
+  printWarnings(s.scene.warnings);
+  printWarnings(s.mesh.warnings);
+  return s;
+}
+
+SolverOptions solverOptions(const Settings& settings) {
+  SolverOptions options;
+  options.tolerance = settings.tolerance;
+  options.maxShots = settings.maxShots;
+  options.timeLimit = settings.timeLimit;
+  options.overshoot = settings.overshoot;
+  options.emitterSamples = settings.emitterSamples;
+  options.shooterSamples = settings.shooterSamples;
+  return options;
+}
+
 void printWarnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "radiosity: warning: " << w << "\n";
 }

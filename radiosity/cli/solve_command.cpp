@@ -56,22 +56,11 @@ Json historyRow(const ProgressiveSolver& solver, const PatchMesh& mesh,
 void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
-  Scene scene = loadScene(o.scene);
-  if (!scene.hasEmitter())
-    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission",
-                     "none (radiosity light comes from emitting surfaces)");
-  Settings settings = resolveSettings(scene, o.flags);
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
-
-  SolverOptions options;
-  options.emitterSamples = settings.emitterSamples;
-  options.shooterSamples = settings.shooterSamples;
-  options.tolerance = settings.tolerance;
-  options.maxShots = settings.maxShots;
-  options.timeLimit = settings.timeLimit;
-  options.overshoot = settings.overshoot;
+  SolvableScene solvable = loadSolvable(o.scene, o.flags);
+  const Scene& scene = solvable.scene;
+  const Settings& settings = solvable.settings;
+  const PatchMesh& mesh = solvable.mesh;
+  SolverOptions options = solverOptions(settings);
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
   // The reference first, so that the solve's own clock does not count it.
   std::vector<glm::dvec3> reference;
