@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
@@ -110,13 +111,16 @@ std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int mi
 }
 
 HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize,
-                                 unsigned seed)
-    : mesh_(mesh), geometry_(HemicubeGeometry::fromMesh(mesh)),
-      hemicube_(std::make_unique<Hemicube>(geometry_, resolution, sceneSize)), seed_(seed) {}
+                                 unsigned seed, int workers)
+    : mesh_(mesh), geometry_(HemicubeGeometry::fromMesh(mesh)), seed_(seed) {
+  if (workers <= 0) workers = std::max(1, int(std::thread::hardware_concurrency()));
+  for (int w = 0; w < workers; ++w)
+    hemicubes_.push_back(std::make_unique<Hemicube>(geometry_, resolution, sceneSize));
+}
 
 void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,
-                              FormFactors& out) {
-  hemicube_->compute(sample.point, sample.normal, hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)),
+                              FormFactors& out, int worker) {
+  hemicubes_[worker]->compute(sample.point, sample.normal, hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)),
                      out, mesh_.patches[patch].elements);
 }
 
@@ -199,6 +203,22 @@ void ProgressiveSolver::run() {
   }
 }
 
+void ProgressiveSolver::computeFactors(int patch, const std::vector<glm::dvec3>& powers) {
+  const auto& samples = samples_[patch];
+  if (sampleFactors_.size() < samples.size()) sampleFactors_.resize(samples.size());
+  // Workers take samples round-robin; each uses its own hemicube.
+  auto work = [&](int worker, int stride) {
+    for (size_t index = worker; index < samples.size(); index += stride)
+      if (powers[index] != glm::dvec3(0.0))
+        factors_.factors(patch, int(index), samples[index], sampleFactors_[index], worker);
+  };
+  int workers = std::min<int>(factors_.workers(), int(samples.size()));
+  std::vector<std::thread> threads;
+  for (int w = 1; w < workers; ++w) threads.emplace_back(work, w, workers);
+  work(0, workers);
+  for (auto& t : threads) t.join();
+}
+
 void ProgressiveSolver::shoot(int patch) {
   const Patch& p = mesh_.patches[patch];
   if (samples_[patch].empty()) {
@@ -209,14 +229,20 @@ void ProgressiveSolver::shoot(int patch) {
   }
   // The power each element sends (ω times its unshot power) is fixed before any sample shoots.
   const double omega = options_.overshoot;
-  for (int index = 0; index < int(samples_[patch].size()); ++index) {
-    const ShooterSample& s = samples_[patch][index];
-    glm::dvec3 power(0.0);
+  const auto& samples = samples_[patch];
+  std::vector<glm::dvec3> powers(samples.size(), glm::dvec3(0.0));
+  for (size_t index = 0; index < samples.size(); ++index) {
+    const ShooterSample& s = samples[index];
     for (size_t k = 0; k < s.elements.size(); ++k)
-      power += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
-    power *= omega;
+      powers[index] += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
+    powers[index] *= omega;
+  }
+  computeFactors(patch, powers);
+  // Deliver in sample order, so that the result does not depend on the workers.
+  for (size_t index = 0; index < samples.size(); ++index) {
+    const glm::dvec3& power = powers[index];
     if (power == glm::dvec3(0.0)) continue;
-    factors_.factors(patch, index, s, ff_);
+    const FormFactors& ff_ = sampleFactors_[index];
     glm::dvec3 delivered(0.0);
     for (size_t k = 0; k < ff_.elements.size(); ++k) {
       int j = ff_.elements[k];

@@ -22,25 +22,32 @@ struct ShooterSample {
 };
 
 /// Where the form factors of a shot come from: hemicubes in the solver, exact injected
-/// factors in tests.
+/// factors in tests. Calls with different `worker` numbers may run concurrently.
 class FactorSource {
  public:
   virtual ~FactorSource() = default;
   /// Factors from sample `index` of patch `patch` to every element (sparse), and what escaped.
-  virtual void factors(int patch, int index, const ShooterSample& sample, FormFactors& out) = 0;
+  virtual void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+                       int worker = 0) = 0;
+  /// How many workers may call factors() at once.
+  virtual int workers() const { return 1; }
 };
 
 /// Hemicubes over the whole mesh, turned by (seed, patch, sample), the patch's own elements
 /// excluded.
 class HemicubeFactors : public FactorSource {
  public:
-  HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed);
-  void factors(int patch, int index, const ShooterSample& sample, FormFactors& out) override;
+  /// workers: hemicubes that may render at once (0: one per hardware thread).
+  HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed,
+                  int workers = 0);
+  void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+               int worker = 0) override;
+  int workers() const override { return int(hemicubes_.size()); }
 
  private:
   const PatchMesh& mesh_;
   HemicubeGeometry geometry_;
-  std::unique_ptr<Hemicube> hemicube_;
+  std::vector<std::unique_ptr<Hemicube>> hemicubes_;  // one per worker
   unsigned seed_;
 };
 
@@ -92,6 +99,7 @@ class ProgressiveSolver {
  private:
   int pickShooter() const;
   void shoot(int patch);
+  void computeFactors(int patch, const std::vector<glm::dvec3>& powers);
   void setPatchUnshot(int patch, const glm::dvec3& power);
 
   const PatchMesh& mesh_;
@@ -109,7 +117,7 @@ class ProgressiveSolver {
   long shots_ = 0;
   Stop stop_ = Stop::None;
   std::chrono::steady_clock::time_point start_;
-  FormFactors ff_;
+  std::vector<FormFactors> sampleFactors_;  // one per sample of the current shot
 };
 
 /// Stratified samples over a patch, at least `minimum` of them. A patch with fewer elements

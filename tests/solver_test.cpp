@@ -30,7 +30,7 @@ class SurfaceFactors : public FactorSource {
     area_.assign(F_.size(), 0.0);
     for (int e = 0; e < mesh.elementCount(); ++e) area_[mesh.surface(e)] += mesh.area(e);
   }
-  void factors(int patch, int, const ShooterSample&, FormFactors& out) override {
+  void factors(int patch, int, const ShooterSample&, FormFactors& out, int) override {
     int from = mesh_.patches[patch].surface;
     out.elements.clear();
     out.factors.clear();
@@ -335,6 +335,27 @@ TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
   // Beyond x = 90 (light edge, past the square's edge, to the floor) the whole light is seen.
   for (const auto& [x, ratio] : solved)
     if (std::abs(x) > 90 + 2 * L) EXPECT_NEAR(ratio, 1.0, 0.05) << "at x = " << x;
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh mesh = buildPatchMesh(scene, {110, 220});
+  SolverOptions options;
+  options.maxShots = 80;
+  std::vector<std::vector<glm::dvec3>> results;
+  for (int workers : {1, 2}) {
+    HemicubeFactors factors(mesh, 64, scene.diagonal(), 5, workers);
+    ProgressiveSolver solver(mesh, factors, options);
+    solver.run();
+    results.push_back(solver.radiosity());
+  }
+  EXPECT_EQ(results[0], results[1]);
 }
 
 }  // namespace
