@@ -146,6 +146,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
   ledger_.unshot = ledger_.emitted;
   emittedLuminance_ = luminance(ledger_.emitted);
   patchUnshot_.assign(mesh.patches.size(), glm::dvec3(0.0));
+  shotsOf_.assign(mesh.patches.size(), 0);
   samples_.resize(mesh.patches.size());
   for (size_t p = 0; p < mesh.patches.size(); ++p) {
     glm::dvec3 power(0.0);
@@ -153,6 +154,10 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
     patchUnshot_[p] = power;
     unshotLuminance_ += std::abs(luminance(power));
   }
+}
+
+int ProgressiveSolver::patchesNeverShot() const {
+  return int(std::count(shotsOf_.begin(), shotsOf_.end(), 0));
 }
 
 double ProgressiveSolver::seconds() const {
@@ -269,6 +274,7 @@ void ProgressiveSolver::shoot(int patch) {
   }
   setPatchUnshot(patch, left);
   ++shots_;
+  ++shotsOf_[patch];
   // The ledger's unshot power and a fresh running total.
   ledger_.unshot = glm::dvec3(0.0);
   if (shots_ % kResumEvery == 0) unshotLuminance_ = 0;

@@ -93,6 +93,8 @@ class ProgressiveSolver {
   /// The ambient term of Cohen et al. 1988: (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄), ρ̄ the area-weighted
   /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient.
   glm::dvec3 ambient() const;
+  /// Patches that never shot so far (nothing, or too little, to send).
+  int patchesNeverShot() const;
   /// The points each patch shoots from.
   const std::vector<ShooterSample>& samples(int patch) const { return samples_[patch]; }
 
@@ -110,6 +112,7 @@ class ProgressiveSolver {
   std::vector<double> area_;
   std::vector<int> patchOf_;
   std::vector<glm::dvec3> patchUnshot_;  // Σ A ΔB over the patch's elements
+  std::vector<int> shotsOf_;             // per patch
   double unshotLuminance_ = 0, emittedLuminance_ = 0, powerShot_ = 0;
   glm::dvec3 rhoMean_{0.0};
   double totalArea_ = 0;

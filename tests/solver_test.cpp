@@ -360,3 +360,28 @@ TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+/// Generalised furnace (oracles.md §4): closed, uniform ρ, any emission →
+/// Σ A·B = Σ A·E / (1 − ρ), per channel; hemicube rows that leak would break it.
+TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
+  for (double rho : {0.5, 0.9}) {
+    Scene scene = loadScene(kScenes + "cube.json");  // only the ceiling emits
+    for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
+    PatchMesh mesh = buildPatchMesh(scene, {0.4, 0.4});
+    HemicubeFactors factors(mesh, 64, scene.diagonal(), 1);
+    std::vector<glm::dvec3> B = TransportMatrix(mesh, factors, SolverOptions{}).solveDirect();
+    glm::dvec3 power(0.0), emitted(0.0);
+    for (int e = 0; e < mesh.elementCount(); ++e) {
+      power += mesh.area(e) * B[e];
+      emitted += mesh.area(e) * mesh.emission(e);
+    }
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(power[k] / (emitted[k] / (1 - rho)), 1.0, 1e-6) << "rho " << rho;
+  }
+}
+
+}  // namespace
+}  // namespace rad
