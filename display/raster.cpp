@@ -644,29 +644,51 @@ __attribute__((noinline)) void fastTriangle(Ctx& c, const FastCtx& fc, const glm
 }
 #endif
 
-// A polygon vertex during clipping.
+// A polygon vertex during clipping. Clipping works in double precision: a near-plane cut
+// subtracts nearly equal w values, and in float the cut points of one triangle can come out
+// in the wrong order far out in the guard band, which turned convex polygons concave and lost
+// whole fan triangles (regression test NearPlaneCutNearTheEyeStaysConvex).
 struct CVert {
-  glm::vec4 pos;
+  glm::dvec4 pos;
   glm::vec4 col;
   uint32_t src;  // original vertex index, or kGenerated
 };
 
+// planeDist in double, for the clipper.
+inline double planeDistD(const glm::dvec4& v, int p, const Frame& f) {
+  switch (p) {
+    case 0: return v.z + double(f.nearW) * v.w;
+    case 1: return v.w - v.z;
+    case 2: return v.x + double(f.gx) * v.w;
+    case 3: return double(f.gx) * v.w - v.x;
+    case 4: return v.y + double(f.gy) * v.w;
+    default: return double(f.gy) * v.w - v.y;
+  }
+}
+
+// Clip space (double) -> (x_w, y_w, depth, 1/w), for vertices made by clipping.
+inline glm::vec4 projectD(const glm::dvec4& v, const Frame& f) {
+  const double q = 1.0 / v.w;
+  return glm::vec4(float((v.x * q + 1.0) * f.halfW), float((v.y * q + 1.0) * f.halfH),
+                   float(v.z * q * f.zScale + f.zBias), float(q));
+}
+
 // Intersection of edge (in, out) with plane p. Always computed from the inside vertex, so an
 // edge shared by two triangles is cut at bit-identical points whatever its direction.
-inline CVert intersect(const CVert& in, float din, const CVert& out, float dout, int p,
+inline CVert intersect(const CVert& in, double din, const CVert& out, double dout, int p,
                        const Frame& f) {
-  const float t = din / (din - dout);
+  const double t = din / (din - dout);
   CVert r;
   r.pos = in.pos + t * (out.pos - in.pos);
-  r.col = in.col + t * (out.col - in.col);
+  r.col = in.col + float(t) * (out.col - in.col);
   r.src = kGenerated;
   switch (p) {  // put the vertex exactly on the plane
-    case 0: r.pos.z = -(f.nearW * r.pos.w); break;
+    case 0: r.pos.z = -(double(f.nearW) * r.pos.w); break;
     case 1: r.pos.z = r.pos.w; break;
-    case 2: r.pos.x = -(f.gx * r.pos.w); break;
-    case 3: r.pos.x = f.gx * r.pos.w; break;
-    case 4: r.pos.y = -(f.gy * r.pos.w); break;
-    default: r.pos.y = f.gy * r.pos.w; break;
+    case 2: r.pos.x = -(double(f.gx) * r.pos.w); break;
+    case 3: r.pos.x = double(f.gx) * r.pos.w; break;
+    case 4: r.pos.y = -(double(f.gy) * r.pos.w); break;
+    default: r.pos.y = double(f.gy) * r.pos.w; break;
   }
   return r;
 }
@@ -681,24 +703,24 @@ void clipAndDraw(const Ctx& c, const Frame& f, const glm::vec4* clip, const glm:
   CVert* next = bufB;
   int n = 3;
   for (int k = 0; k < 3; ++k) {
-    poly[k].pos = clip[vi[k]];
+    poly[k].pos = glm::dvec4(clip[vi[k]]);
     poly[k].col = (S == Shade::Smooth) ? colors[vi[k]] : glm::vec4(0.0f);
     poly[k].src = vi[k];
   }
   // Every plane is tested (not only those flagged by the triangle's outcodes) so that adjacent
   // triangles cut their shared edge identically even after rounding in earlier planes.
   for (int p = 0; p < kPlaneCount; ++p) {
-    float d[kMaxPoly];
+    double d[kMaxPoly];
     bool anyOut = false;
     for (int k = 0; k < n; ++k) {
-      d[k] = planeDist(poly[k].pos, p, f);
-      anyOut |= !(d[k] >= 0.0f);
+      d[k] = planeDistD(poly[k].pos, p, f);
+      anyOut |= !(d[k] >= 0.0);
     }
     if (!anyOut) continue;
     int m = 0;
     for (int k = 0; k < n; ++k) {
       const int k1 = k + 1 == n ? 0 : k + 1;
-      const bool in0 = d[k] >= 0.0f, in1 = d[k1] >= 0.0f;
+      const bool in0 = d[k] >= 0.0, in1 = d[k1] >= 0.0;
       if (m + 2 > kMaxPoly) return;  // impossible for finite input
       if (in0) next[m++] = poly[k];
       if (in0 != in1)
@@ -719,7 +741,7 @@ void clipAndDraw(const Ctx& c, const Frame& f, const glm::vec4* clip, const glm:
       sv[k] = makeSVert(win[s], fixed[s], &poly[k].col);
       continue;
     }
-    const glm::vec4 w = project(poly[k].pos, f);
+    const glm::vec4 w = projectD(poly[k].pos, f);
     const float lim = kGuardPixels + 1.0f;
     if (!(std::fabs(w.x) <= lim && std::fabs(w.y) <= lim && std::fabs(w.z) <= 2.0f && w.w > 0.0f &&
           w.w <= FLT_MAX))

@@ -844,3 +844,41 @@ TEST(Raster, ReversedZeroToOneDepthKeepsRelativePrecision) {
   for (auto id : t.item) covered += id == 7u;
   EXPECT_GT(covered, 0);
 }
+
+// Regression (a hemicube leak found in the closed-cube furnace): a triangle with one vertex
+// just behind the eye is cut by the near plane at two points close together in clip space but
+// far apart on screen. Clipping in float put those points in the wrong order in the guard band,
+// the clipped polygon turned concave and a whole fan triangle was dropped (450 of 4096 pixels
+// of a hemicube face saw the sky). Coverage must match an exact ray test of every pixel centre.
+TEST(Raster, NearPlaneCutNearTheEyeStaysConvex) {
+  const int W = 64, H = 64;
+  const float kNear = 1.73205e-07f;
+  std::vector<glm::vec4> clip = {{-0.0107927f, 0.00814682f, kNear, -1.73205e-06f},
+                                 {0.085464f, -0.0310745f, kNear, 0.103939f},
+                                 {-0.0107927f, 0.00814682f, kNear, 0.166665f}};
+  Target t(W, H, true, false);
+  t.clearDepth(0.0f);
+  t.clearItem();
+  State s;
+  s.depthFunc = raster::DepthFunc::Greater;
+  s.clipDepth = raster::ClipDepth::ZeroToOne;
+  const uint32_t idx[3] = {0, 1, 2}, id = 7;
+  raster::drawTriangles(t, s, clip.data(), 3, idx, 1, &id);
+  // Exact: the ray (x, y, w) = λ·(ndc x, ndc y, 1) meets the triangle at w = λ >= near.
+  auto det = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return glm::dot(a, glm::cross(b, c)); };
+  glm::dvec3 a(clip[0].x, clip[0].y, clip[0].w), b(clip[1].x, clip[1].y, clip[1].w),
+      c(clip[2].x, clip[2].y, clip[2].w);
+  int expected = 0, mismatched = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      glm::dvec3 r((x + 0.5) / W * 2 - 1, (y + 0.5) / H * 2 - 1, 1);
+      double e0 = det(b, c, r), e1 = det(c, a, r), e2 = det(a, b, r);
+      bool same = (e0 > 0 && e1 > 0 && e2 > 0) || (e0 < 0 && e1 < 0 && e2 < 0);
+      double lambda = det(a, b, c) / (e0 + e1 + e2);
+      bool inside = same && lambda >= kNear;
+      expected += inside;
+      mismatched += inside != (t.item[t.index(x, y)] == id);
+    }
+  EXPECT_GT(expected, 400);
+  EXPECT_LE(mismatched, 4) << "of " << expected << " pixels";
+}
