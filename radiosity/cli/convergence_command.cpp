@@ -103,7 +103,8 @@ void runConvergence(const ConvergenceOptions& o) {
   const Settings& settings = solvable.settings;
   const PatchMesh& mesh = solvable.mesh;
   SolverOptions options = solverOptions(settings);
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  // One worker, so that every method's time is single-threaded and comparable.
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 1);
 
   auto t0 = std::chrono::steady_clock::now();
   TransportMatrix system(mesh, factors, options);
