@@ -73,13 +73,12 @@ class Hemicube {
   /// The steps of compute(), for drawing the identical item buffers with another rasteriser
   /// (benchmarks): prepare() places the cube and sets the item ids; faceClip() gives face f's
   /// clip-space vertices (0 top R×R; 1–4 sides R×R/2, upper half only; z = near, reversed
-  /// [0, 1] depth, GREATER); ids()[e] is element e's item id (e, or an occluder id).
+  /// [0, 1] depth, GREATER).
   void prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
                const std::vector<int>& excluded = {});
   void faceClip(int face, std::vector<glm::vec4>& clip) const;
-  const std::vector<uint32_t>& ids() const { return ids_; }
   /// The triangles prepare() found above the base plane (the others show on no face):
-  /// 3 vertex indices each, and their item ids.
+  /// 3 vertex indices each, and their item ids (the element, or an occluder id).
   const std::vector<uint32_t>& drawIndices() const { return drawIndices_; }
   const std::vector<uint32_t>& drawIds() const { return drawIds_; }
 

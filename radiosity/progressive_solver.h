@@ -95,8 +95,6 @@ class ProgressiveSolver {
   glm::dvec3 ambient() const;
   /// Patches that never shot so far (nothing, or too little, to send).
   int patchesNeverShot() const;
-  /// The points each patch shoots from.
-  const std::vector<ShooterSample>& samples(int patch) const { return samples_[patch]; }
 
  private:
   int pickShooter() const;

@@ -27,6 +27,14 @@ std::string svgLogPlot(const std::string& title, const std::string& xLabel,
       if (y > 0) xMax = std::max(xMax, x), yMin = std::min(yMin, y), yMax = std::max(yMax, y);
   if (!(yMax > 0)) yMin = 1e-4, yMax = 1;
   if (!(xMax > 0)) xMax = 1;
+  // Round ticks: a step of 1, 2 or 5 times a power of ten, at most six of them.
+  double step = std::pow(10.0, std::floor(std::log10(xMax / 5)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (xMax / (m * step) <= 6) {
+      step *= m;
+      break;
+    }
+  xMax = std::ceil(xMax / step - 1e-9) * step;
   double lo = std::floor(std::log10(yMin)), hi = std::ceil(std::log10(yMax));
   if (hi <= lo) hi = lo + 1;
   const double plotW = kWidth - kLeft - kRight, plotH = kHeight - kTop - kBottom;
@@ -44,8 +52,7 @@ std::string svgLogPlot(const std::string& title, const std::string& xLabel,
         << "' stroke='#ddd'/>\n<text x='" << kLeft - 6 << "' y='" << y + 4
         << "' text-anchor='end'>1e" << number(d) << "</text>\n";
   }
-  for (int k = 0; k <= 5; ++k) {
-    double x = xMax * k / 5;
+  for (double x = 0; x <= xMax * (1 + 1e-9); x += step) {
     svg << "<text x='" << px(x) << "' y='" << kTop + plotH + 18 << "' text-anchor='middle'>"
         << number(std::round(x * 1000) / 1000) << "</text>\n";
   }
