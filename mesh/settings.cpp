@@ -17,7 +17,7 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.seed = pick(flags.seed, file.seed, 1u);
   s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
   s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
-  s.overshoot = pick(flags.overshoot, file.overshoot, 1.0);
+  s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.exposure = flags.exposure ? flags.exposure : file.exposure;
   s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, 64);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, 4);

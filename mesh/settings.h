@@ -10,6 +10,9 @@ namespace rad {
 
 /// Default element edge: the scene diagonal divided by this.
 constexpr double kDefaultElementsPerDiagonal = 25;
+/// Default overshooting factor: on the Cornell box (docs/cornell_convergence.csv) ω = 1.3 reaches
+/// 1 % error in 1 719 shots against 2 514 for plain shooting, and 0.1 % in 3 041 against 4 046.
+constexpr double kDefaultOvershoot = 1.3;
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
 
@@ -20,7 +23,7 @@ struct Settings {
   unsigned seed = 1;
   long maxShots = 0;         ///< 0: no limit
   double timeLimit = 0;      ///< seconds; 0: no limit
-  double overshoot = 1;      ///< ω of overshooting; 1: plain shooting
+  double overshoot = kDefaultOvershoot;  ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
   int emitterSamples = 64;   ///< at least this many shooting points on an emitting patch
   int shooterSamples = 4;    ///< on any other patch

@@ -1,5 +1,7 @@
 // radiosity solve SCENE -o RESULT.ply [--report R.json]: the main job.
 #include <cmath>
+
+#include <glm/common.hpp>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -91,10 +93,21 @@ void runSolve(const SolveOptions& o) {
   if (terminal) std::fprintf(stderr, "\n");
   if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver, mesh, reference));
 
-  // Bake: unconverged solutions show the ambient term in their display colours.
+  // Bake: unconverged solutions show the ambient term in their display colours. Overshooting
+  // can leave a slightly negative channel mid-solve; the result never carries one.
   bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
-  glm::dvec3 ambient = converged ? glm::dvec3(0.0) : solver.ambient();
-  double exposure = settings.exposure ? *settings.exposure : autoExposure(mesh, solver.radiosity());
+  glm::dvec3 ambient = converged ? glm::dvec3(0.0) : glm::max(solver.ambient(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> B = solver.radiosity();
+  int clamped = 0;
+  for (auto& b : B)
+    if (b.x < 0 || b.y < 0 || b.z < 0) {
+      ++clamped;
+      b = glm::max(b, glm::dvec3(0.0));
+    }
+  if (clamped)
+    std::fprintf(stderr, "radiosity: warning: %d elements had a negative channel (overshooting "
+                         "before convergence), set to 0\n", clamped);
+  double exposure = settings.exposure ? *settings.exposure : autoExposure(mesh, B);
   Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);
 
   Json report;
@@ -130,6 +143,7 @@ void runSolve(const SolveOptions& o) {
   report["exposure"] = exposure;
   report["ambient_applied"] = !converged;
   report["ambient"] = rgb(ambient);
+  report["negative_clamped"] = clamped;
   report["camera"] = {{"eye", rgb(camera.eye)}, {"target", rgb(camera.target)},
                       {"up", rgb(camera.up)}, {"fov_y_deg", camera.fovYDeg}};
   const EnergyLedger& l = solver.ledger();
@@ -143,7 +157,7 @@ void runSolve(const SolveOptions& o) {
   report["history"] = history;
 
   // Outputs: each through a temporary file; the report last, so a report means a result.
-  writeResult(o.output, mesh, solver.radiosity(), ambient, exposure, camera);
+  writeResult(o.output, mesh, B, ambient, exposure, camera);
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
   std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",
@@ -171,7 +185,7 @@ Command addSolveCommand(CLI::App& app) {
   sub->add_option("--time-limit", o->flags.timeLimit, "Stop after this many seconds (solver.time_limit)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--overshoot", o->flags.overshoot,
-                  "Overshooting factor ω in [1, 2] (solver.overshoot; default 1, plain shooting)")
+                  "Overshooting factor ω in [1, 2] (solver.overshoot; default 1.3, measured; 1: plain shooting)")
       ->check(CLI::Range(1.0, 2.0));
   sub->add_option("--reference", o->reference,
                   "Compare with a reference: 'direct' (solve the full system from the same hemicubes "
