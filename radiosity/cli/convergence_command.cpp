@@ -25,7 +25,7 @@ constexpr int kMaxSweeps = 200;
 /// Progressive runs stop at this many shots per patch at most.
 constexpr long kMaxShotsPerPatch = 40;
 /// Overshooting factor of the "overshooting" curve unless --overshoot says otherwise.
-constexpr double kDefaultOvershoot = 1.3;
+constexpr double kOvershootCurve = 1.3;
 
 struct ConvergenceOptions {
   std::string scene, output, csv;
@@ -114,7 +114,8 @@ void runConvergence(const ConvergenceOptions& o) {
                mesh.elementCount(), mesh.patches.size(), matrixSeconds, seconds(t0) - matrixSeconds);
 
   SolverOptions overshooting = options;
-  overshooting.overshoot = o.flags.overshoot.value_or(kDefaultOvershoot);
+  overshooting.overshoot = o.flags.overshoot.value_or(kOvershootCurve);
+  options.overshoot = 1;  // the plain curves shoot plainly, whatever the settings say
   std::vector<Curve> curves;
   curves.push_back(progressiveCurve("progressive", mesh, factors, options, false, reference));
   curves.push_back(progressiveCurve("progressive + ambient", mesh, factors, options, true, reference));
