@@ -807,6 +807,11 @@ bool indicesBelow(const uint32_t* idx, size_t n, size_t limit) {
   return m <= last;
 }
 
+// The vertex indices of triangle t (non-indexed drawing: 3t, 3t+1, 3t+2).
+inline void triangleVertices(const uint32_t* indices, size_t t, uint32_t (&vi)[3]) {
+  for (int k = 0; k < 3; ++k) vi[k] = indices ? indices[3 * t + k] : uint32_t(3 * t + k);
+}
+
 // The triangle loop: trivial reject, fast unclipped setup or clipping.
 template <bool Fast, Shade S, bool Greater>
 void drawAll(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* indices,
@@ -814,11 +819,7 @@ void drawAll(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* indi
              const glm::vec4* win, const glm::ivec2* fixed, const uint16_t* codes) {
   for (size_t t = 0; t < triangleCount; ++t) {
     uint32_t vi[3];
-    if (indices) {
-      vi[0] = indices[3 * t], vi[1] = indices[3 * t + 1], vi[2] = indices[3 * t + 2];
-    } else {
-      vi[0] = uint32_t(3 * t), vi[1] = uint32_t(3 * t + 1), vi[2] = uint32_t(3 * t + 2);
-    }
+    triangleVertices(indices, t, vi);
     const uint32_t o0 = codes[vi[0]], o1 = codes[vi[1]], o2 = codes[vi[2]];
     if (o0 & o1 & o2) continue;  // entirely outside one plane
     c.id = ids ? ids[t] : uint32_t(t);
@@ -847,11 +848,7 @@ void drawAllFast(Ctx& c, const Frame& f, const glm::vec4* clip, const uint32_t* 
   fc.width = c.width;
   for (size_t t = 0; t < triangleCount; ++t) {
     uint32_t vi[3];
-    if (indices) {
-      vi[0] = indices[3 * t], vi[1] = indices[3 * t + 1], vi[2] = indices[3 * t + 2];
-    } else {
-      vi[0] = uint32_t(3 * t), vi[1] = uint32_t(3 * t + 1), vi[2] = uint32_t(3 * t + 2);
-    }
+    triangleVertices(indices, t, vi);
     const uint32_t o0 = codes[vi[0]], o1 = codes[vi[1]], o2 = codes[vi[2]];
     if (o0 & o1 & o2) continue;  // entirely outside one plane
     const uint32_t id = ids ? ids[t] : uint32_t(t);

@@ -99,9 +99,7 @@ void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
-  const Scene& scene = solvable.scene;
-  const Settings& settings = solvable.settings;
-  const PatchMesh& mesh = solvable.mesh;
+  const auto& [scene, settings, mesh] = solvable;
   SolverOptions options = solverOptions(settings);
   // One worker, so that every method's time is single-threaded and comparable.
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 1);

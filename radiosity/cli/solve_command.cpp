@@ -59,9 +59,7 @@ void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
-  const Scene& scene = solvable.scene;
-  const Settings& settings = solvable.settings;
-  const PatchMesh& mesh = solvable.mesh;
+  const auto& [scene, settings, mesh] = solvable;
   SolverOptions options = solverOptions(settings);
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
   // The reference first, so that the solve's own clock does not count it.
