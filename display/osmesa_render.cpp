@@ -1,0 +1,121 @@
+// The OpenGL backend of the viewer: fixed-function OpenGL through OSMesa (llvmpipe), exactly as
+// an interactive program would draw the result: lighting off, glColor per vertex,
+// glShadeModel(GL_SMOOTH) or GL_FLAT (the last vertex of a triangle gives its colour), depth
+// test on, matrices loaded with glLoadMatrixf. Only OpenGL 1.1 entry points are used, all
+// exported by libOSMesa; link OSMesa only (libGL in the same binary silently breaks it).
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "display/viewer.h"
+
+namespace rad::viewer::detail {
+namespace {
+
+/// Display colour of wireframe edges.
+constexpr GLubyte kWireColour[3] = {16, 16, 16};
+
+struct ContextDeleter {
+  void operator()(osmesa_context* c) const { OSMesaDestroyContext(c); }
+};
+using Context = std::unique_ptr<osmesa_context, ContextDeleter>;
+
+/// Draws the list into `buffer` (RGBA, `type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first).
+void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
+              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+              GLenum type, void* buffer) {
+  Context ctx(OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr));
+  if (!ctx)
+    throw std::runtime_error(
+        "OpenGL: OSMesaCreateContextExt failed (is Mesa's OSMesa, libosmesa6, installed?)");
+  if (!OSMesaMakeCurrent(ctx.get(), buffer, type, width, height))
+    throw std::runtime_error("OpenGL: OSMesaMakeCurrent failed for a " + std::to_string(width) + "x" +
+                             std::to_string(height) + " buffer");
+  if (!glGetString(GL_RENDERER))
+    throw std::runtime_error(
+        "OpenGL: glGetString(GL_RENDERER) returned null after OSMesaMakeCurrent (is libGL linked "
+        "into the same binary? link OSMesa only)");
+  GLint maxViewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  if (width > maxViewport[0] || height > maxViewport[1])
+    throw std::runtime_error("OpenGL: a " + std::to_string(width) + "x" + std::to_string(height) +
+                             " picture exceeds the largest viewport, " + std::to_string(maxViewport[0]) +
+                             "x" + std::to_string(maxViewport[1]) + " (use a smaller size or --ssaa)");
+
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DITHER);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixf(glm::value_ptr(projection));
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixf(glm::value_ptr(view));
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
+  glColorPointer(4, GL_FLOAT, 0, colours.data());
+  const GLsizei count = GLsizei(list.positions.size());
+  if (wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+  }
+  glDrawArrays(GL_TRIANGLES, 0, count);
+  if (wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glColor3ubv(kWireColour);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDepthFunc(GL_LEQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, count);
+  }
+  glFinish();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw std::runtime_error("OpenGL: drawing failed with error 0x" + std::to_string(unsigned(error)));
+  OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+}
+
+}  // namespace
+
+void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view, int width,
+                  int height, Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
+                  std::vector<float>* radiance) {
+  const size_t pixels = size_t(width) * height;
+  {
+    std::vector<GLubyte> buffer(pixels * 4);
+    drawPass(list, list.display, projection, view, width, height, shade, wireframe, GL_UNSIGNED_BYTE,
+             buffer.data());
+    rgb.resize(pixels * 3);
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
+  }
+  if (!radiance) return;
+  // Radiance through a float colour buffer. glColor values are clamped to [0, 1] on the way in,
+  // so the colours are scaled into that range and the read-back scaled back.
+  float peak = 0;
+  for (const auto& c : list.radiance) peak = std::max({peak, c.r, c.g, c.b});
+  const float scale = peak > 0 ? 1.0f / peak : 1.0f;
+  std::vector<glm::vec4> scaled(list.radiance.size());
+  for (size_t i = 0; i < scaled.size(); ++i)
+    scaled[i] = glm::vec4(glm::min(glm::vec3(list.radiance[i]) * scale, glm::vec3(1.0f)), 1.0f);
+  std::vector<GLfloat> buffer(pixels * 4);
+  drawPass(list, scaled, projection, view, width, height, shade, /*wireframe=*/false, GL_FLOAT,
+           buffer.data());
+  radiance->resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) (*radiance)[p * 3 + c] = buffer[p * 4 + c] / scale;
+}
+
+}  // namespace rad::viewer::detail

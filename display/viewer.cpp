@@ -1,0 +1,385 @@
+#include "display/viewer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <stb_image_write.h>
+
+#include "display/raster.h"
+#include "mesh/color.h"
+#include "mesh/error.h"
+#include "mesh/output_file.h"
+#include "mesh/ply_reader.h"
+
+namespace rad::viewer {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+/// The radiosity properties of the result mesh, per vertex and per face.
+const char* const kChannels[3] = {"radiosity_r", "radiosity_g", "radiosity_b"};
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+/// Parses "<key> X Y Z ..." comments; false when the text does not follow the pattern.
+bool parseCameraComment(const std::string& text, ViewCamera& c) {
+  std::istringstream s(text);
+  std::string camera, eye, target, up, fov;
+  if (!(s >> camera >> eye >> c.eye.x >> c.eye.y >> c.eye.z >> target >> c.target.x >> c.target.y >>
+        c.target.z >> up >> c.up.x >> c.up.y >> c.up.z >> fov >> c.fovYDeg))
+    return false;
+  return camera == "camera" && eye == "eye" && target == "target" && up == "up" &&
+         fov == "fov_y_deg";
+}
+
+/// Checks a camera for finite values and a usable frame; where names the source.
+void checkCamera(const ViewCamera& c, const std::string& where) {
+  for (double v : {c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
+                   c.up.z, c.fovYDeg})
+    if (!std::isfinite(v)) throw inputError(where, "finite camera values", "a non-finite value");
+  if (!(c.fovYDeg > 0 && c.fovYDeg < 180))
+    throw inputError(where, "a vertical field of view in (0, 180) degrees", fmt(c.fovYDeg));
+  glm::dvec3 forward = c.target - c.eye;
+  if (glm::length(forward) == 0) throw inputError(where, "an eye distinct from the target", "the same point");
+  if (glm::length(glm::cross(forward, c.up)) <= 1e-12 * glm::length(forward) * glm::length(c.up))
+    throw inputError(where, "an up vector not parallel to the view direction", "a parallel one");
+}
+
+/// Linear value of each sRGB display byte: the inverse of mesh/color.h's srgbEncode (found by
+/// bisection on it, so the curve has one home).
+const std::array<double, 256>& srgbDecodeTable() {
+  static const std::array<double, 256> table = [] {
+    std::array<double, 256> t{};
+    for (int b = 0; b < 256; ++b) {
+      double lo = 0, hi = 1, want = b / 255.0;
+      for (int i = 0; i < 60; ++i) {
+        double mid = 0.5 * (lo + hi);
+        (srgbEncode(mid) < want ? lo : hi) = mid;
+      }
+      t[b] = 0.5 * (lo + hi);
+    }
+    return t;
+  }();
+  return table;
+}
+
+uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+/// Box-filters a (width·k) × (height·k) bottom-up byte picture down to width × height, top row
+/// first, averaging in linear light.
+std::vector<uint8_t> downsampleBytes(const std::vector<uint8_t>& big, int width, int height, int k) {
+  std::vector<uint8_t> out(size_t(width) * height * 3);
+  const int bigWidth = width * k;
+  if (k == 1) {
+    for (int y = 0; y < height; ++y)
+      std::copy_n(&big[size_t(height - 1 - y) * width * 3], width * 3, &out[size_t(y) * width * 3]);
+    return out;
+  }
+  const auto& decode = srgbDecodeTable();
+  const double norm = 1.0 / (k * k);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0;
+        for (int j = 0; j < k; ++j)
+          for (int i = 0; i < k; ++i)
+            sum += decode[big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c]];
+        out[(size_t(height - 1 - y) * width + x) * 3 + c] =
+            uint8_t(std::lround(255 * srgbEncode(sum * norm)));
+      }
+  return out;
+}
+
+/// Same for linear floats (plain average).
+std::vector<float> downsampleFloats(const std::vector<float>& big, int width, int height, int k) {
+  std::vector<float> out(size_t(width) * height * 3);
+  const int bigWidth = width * k;
+  const double norm = 1.0 / (k * k);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0;
+        for (int j = 0; j < k; ++j)
+          for (int i = 0; i < k; ++i) sum += big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c];
+        out[(size_t(height - 1 - y) * width + x) * 3 + c] = float(sum * norm);
+      }
+  return out;
+}
+
+/// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.
+void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int width, int height,
+                    Shading shade, std::vector<uint8_t>& rgb, std::vector<float>* radiance) {
+  raster::Target target(width, height, /*withItem=*/false, /*withColor=*/true);
+  raster::State state;
+  state.shade = shade == Shading::Flat ? raster::Shade::Flat : raster::Shade::Smooth;
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, list.positions, clip);
+  const size_t n = list.positions.size();
+  raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.display.data());
+  rgb.resize(size_t(width) * height * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = toByte(target.color[p][c]);
+  if (!radiance) return;
+  target.clear();
+  raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.radiance.data());
+  radiance->resize(size_t(width) * height * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) (*radiance)[p * 3 + c] = target.color[p][c];
+}
+
+void writeWithStb(const std::string& path, const std::function<int(std::ostream&)>& encode,
+                  const char* what) {
+  writeFileAtomically(path, [&](std::ostream& out) {
+    if (!encode(out)) throw inputError(path, std::string("a ") + what + " image encoded", "an encoder failure");
+  });
+}
+
+void toStream(void* context, void* data, int size) {
+  static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
+}
+
+}  // namespace
+
+ResultMesh loadResult(const std::string& path) {
+  PlyMesh ply = readPly(path);
+  ResultMesh m;
+  m.path = path;
+  std::vector<std::string> missing;
+  auto need = [&](const std::vector<PlyColumn>& cols, const char* name, const char* element) {
+    const PlyColumn* c = findColumn(cols, name);
+    if (!c) missing.push_back(std::string(element) + " " + name);
+    return c;
+  };
+  const PlyColumn* xyz[3] = {need(ply.vertex, "x", "vertex"), need(ply.vertex, "y", "vertex"),
+                             need(ply.vertex, "z", "vertex")};
+  const PlyColumn *vb[3], *fb[3];
+  for (int k = 0; k < 3; ++k) vb[k] = need(ply.vertex, kChannels[k], "vertex");
+  for (int k = 0; k < 3; ++k) fb[k] = need(ply.face, kChannels[k], "face");
+  if (!missing.empty()) {
+    std::string list;
+    for (size_t i = 0; i < missing.size(); ++i) list += (i ? ", " : "") + missing[i];
+    throw inputError(path,
+                     "a radiosity result (vertex and face properties radiosity_r, radiosity_g, "
+                     "radiosity_b, as `radiosity solve` writes)",
+                     "a PLY without " + list);
+  }
+  if (ply.faces.empty()) throw inputError(path, "a mesh with faces", "none");
+  const size_t nv = xyz[0]->values.size();
+  m.positions.resize(nv);
+  m.vertexRadiosity.resize(nv);
+  m.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
+  m.boundsMax = -m.boundsMin;
+  for (size_t i = 0; i < nv; ++i) {
+    glm::dvec3 p(xyz[0]->values[i], xyz[1]->values[i], xyz[2]->values[i]);
+    glm::dvec3 b(vb[0]->values[i], vb[1]->values[i], vb[2]->values[i]);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(p[k]))
+        throw inputError(path + ": vertex " + std::to_string(i), "finite coordinates", "a non-finite one");
+      if (!(std::isfinite(b[k]) && b[k] >= 0))
+        throw inputError(path + ": vertex " + std::to_string(i) + ": " + kChannels[k],
+                         "a finite radiosity >= 0", fmt(b[k]));
+    }
+    m.positions[i] = glm::vec3(p);
+    m.vertexRadiosity[i] = b;
+    m.boundsMin = glm::min(m.boundsMin, p);
+    m.boundsMax = glm::max(m.boundsMax, p);
+  }
+  m.faces = ply.faces;
+  m.faceRadiosity.resize(m.faces.size());
+  for (size_t f = 0; f < m.faces.size(); ++f) {
+    glm::dvec3 b(fb[0]->values[f], fb[1]->values[f], fb[2]->values[f]);
+    for (int k = 0; k < 3; ++k)
+      if (!(std::isfinite(b[k]) && b[k] >= 0))
+        throw inputError(path + ": face " + std::to_string(f) + ": " + kChannels[k],
+                         "a finite radiosity >= 0", fmt(b[k]));
+    m.faceRadiosity[f] = b;
+  }
+  for (const auto& comment : ply.comments) {
+    if (comment.rfind("camera", 0) == 0) {
+      ViewCamera c;
+      if (!parseCameraComment(comment, c))
+        throw inputError(path + ": comment camera", "eye X Y Z target X Y Z up X Y Z fov_y_deg F",
+                         "'" + comment + "'");
+      checkCamera(c, path + ": comment camera");
+      m.camera = c;
+    } else if (comment.rfind("exposure", 0) == 0) {
+      std::istringstream s(comment.substr(8));
+      double k;
+      if (!(s >> k) || !std::isfinite(k) || k <= 0)
+        throw inputError(path + ": comment exposure", "a finite exposure > 0", "'" + comment + "'");
+      m.exposure = k;
+    }
+  }
+  return m;
+}
+
+ViewCamera parseCamera(const std::string& text, const ViewCamera& base) {
+  const std::string where = "--camera";
+  const std::string expected = "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F (any subset)";
+  auto bad = [&](const std::string& why) { return inputError(where, expected, why); };
+  std::map<std::string, std::vector<double>> values;
+  std::string current;
+  std::stringstream s(text);
+  std::string token;
+  while (std::getline(s, token, ',')) {
+    size_t eq = token.find('=');
+    std::string number = token;
+    if (eq != std::string::npos) {
+      current = token.substr(0, eq);
+      if (current != "eye" && current != "target" && current != "up" && current != "fov")
+        throw bad("the unknown key \"" + current + "\"");
+      if (values.count(current)) throw bad("\"" + current + "\" twice");
+      values[current];
+      number = token.substr(eq + 1);
+    }
+    if (current.empty()) throw bad("'" + text + "' (no key before \"" + token + "\")");
+    char* end = nullptr;
+    double v = std::strtod(number.c_str(), &end);
+    if (number.empty() || *end != '\0' || !std::isfinite(v))
+      throw bad("\"" + number + "\" where a finite number belongs (in " + current + ")");
+    values[current].push_back(v);
+  }
+  if (values.empty()) throw bad("'" + text + "'");
+  ViewCamera c = base;
+  for (const auto& [key, v] : values) {
+    size_t want = key == "fov" ? 1 : 3;
+    if (v.size() != want)
+      throw bad(std::to_string(v.size()) + " number(s) for " + key + " where " + std::to_string(want) +
+                " belong");
+    if (key == "fov") c.fovYDeg = v[0];
+    glm::dvec3* vec = key == "eye" ? &c.eye : key == "target" ? &c.target : key == "up" ? &c.up : nullptr;
+    if (vec) *vec = glm::dvec3(v[0], v[1], v[2]);
+  }
+  checkCamera(c, where);
+  return c;
+}
+
+ViewCamera effectiveCamera(const ResultMesh& mesh, const RenderOptions& options) {
+  if (options.camera) return *options.camera;
+  if (mesh.camera) return *mesh.camera;
+  // Default: looking along +z at the centre of the bounding box, far enough to see all of it.
+  ViewCamera c;
+  glm::dvec3 centre = 0.5 * (mesh.boundsMin + mesh.boundsMax);
+  double radius = std::max(0.5 * glm::length(mesh.boundsMax - mesh.boundsMin), 1e-9);
+  c.target = centre;
+  c.eye = centre - glm::dvec3(0, 0, radius / std::sin(glm::radians(c.fovYDeg / 2)));
+  return c;
+}
+
+double effectiveExposure(const ResultMesh& mesh, const RenderOptions& options) {
+  if (options.exposure) return *options.exposure;
+  return mesh.exposure.value_or(1.0);
+}
+
+glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& c, int width, int height,
+                         glm::mat4* projection, glm::mat4* view) {
+  glm::dmat4 v = glm::lookAt(c.eye, c.target, c.up);
+  // Near and far fitted to the bounding box's corners along the view axis.
+  double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec3 p((i & 1) ? mesh.boundsMax.x : mesh.boundsMin.x, (i & 2) ? mesh.boundsMax.y : mesh.boundsMin.y,
+                 (i & 4) ? mesh.boundsMax.z : mesh.boundsMin.z);
+    double depth = -(v * glm::dvec4(p, 1.0)).z;
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  double size = std::max(glm::length(mesh.boundsMax - mesh.boundsMin), 1e-9);
+  double zFar = std::max(farthest, 0.0) * 1.01 + 1e-3 * size;
+  double zNear = std::max(nearest * 0.99, zFar * 1e-4);
+  glm::dmat4 p = glm::perspective(glm::radians(c.fovYDeg), double(width) / height, zNear, zFar);
+  if (projection) *projection = glm::mat4(p);
+  if (view) *view = glm::mat4(v);
+  return glm::mat4(p * v);
+}
+
+namespace detail {
+
+DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure) {
+  DrawList list;
+  const size_t n = mesh.faces.size() * 3;
+  list.positions.reserve(n);
+  list.display.reserve(n);
+  list.radiance.reserve(n);
+  auto displayColour = [&](const glm::dvec3& b) {
+    return glm::vec4(displayByte(b.x, exposure) / 255.0f, displayByte(b.y, exposure) / 255.0f,
+                     displayByte(b.z, exposure) / 255.0f, 1.0f);
+  };
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int corner = 0; corner < 3; ++corner) {
+      int v = mesh.faces[f][corner];
+      const glm::dvec3& b = shade == Shading::Flat ? mesh.faceRadiosity[f] : mesh.vertexRadiosity[v];
+      list.positions.push_back(mesh.positions[v]);
+      list.display.push_back(displayColour(b));
+      list.radiance.push_back(glm::vec4(glm::dvec3(b / kPi), 1.0));
+    }
+  return list;
+}
+
+}  // namespace detail
+
+Image render(const ResultMesh& mesh, const RenderOptions& o) {
+  if (o.width < 1 || o.height < 1 || o.ssaa < 1 || int64_t(o.width) * o.ssaa > raster::kMaxSize ||
+      int64_t(o.height) * o.ssaa > raster::kMaxSize)
+    throw inputError("image size", "width and height times --ssaa in 1.." + std::to_string(raster::kMaxSize),
+                     std::to_string(o.width) + "x" + std::to_string(o.height) + " at --ssaa " +
+                         std::to_string(o.ssaa));
+  if (o.wireframe && o.backend == Backend::Software)
+    throw inputError("--wireframe", "--backend osmesa (wireframe is OpenGL-only)", "--backend software");
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
+  detail::DrawList list = detail::buildDrawList(mesh, o.shade, effectiveExposure(mesh, o));
+  std::vector<uint8_t> rgb;
+  std::vector<float> radiance;
+  if (o.backend == Backend::Software)
+    renderSoftware(list, mvp, w, h, o.shade, rgb, o.radiance ? &radiance : nullptr);
+  else
+    detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
+                         o.radiance ? &radiance : nullptr);
+  Image image;
+  image.width = o.width;
+  image.height = o.height;
+  image.rgb = downsampleBytes(rgb, o.width, o.height, o.ssaa);
+  if (o.radiance) image.radiance = downsampleFloats(radiance, o.width, o.height, o.ssaa);
+  return image;
+}
+
+std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions& o) {
+  raster::Target target(o.width, o.height, /*withItem=*/true, /*withColor=*/false);
+  glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), o.width, o.height);
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, mesh.positions, clip);
+  raster::State state;
+  static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
+  raster::drawTriangles(target, state, clip.data(), clip.size(),
+                        reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
+  std::vector<uint32_t> out(target.item.size());
+  for (int y = 0; y < o.height; ++y)
+    std::copy_n(&target.item[size_t(o.height - 1 - y) * o.width], o.width, &out[size_t(y) * o.width]);
+  return out;
+}
+
+void writePng(const std::string& path, const Image& image) {
+  writeWithStb(path, [&](std::ostream& out) {
+    return stbi_write_png_to_func(toStream, &out, image.width, image.height, 3, image.rgb.data(),
+                                  image.width * 3);
+  }, "PNG");
+}
+
+void writeHdr(const std::string& path, const Image& image) {
+  if (image.radiance.size() != size_t(image.width) * image.height * 3)
+    throw InternalError("writeHdr: the image has no radiance");
+  writeWithStb(path, [&](std::ostream& out) {
+    return stbi_write_hdr_to_func(toStream, &out, image.width, image.height, 3, image.radiance.data());
+  }, "Radiance HDR");
+}
+
+}  // namespace rad::viewer

@@ -1,0 +1,80 @@
+# The viewer: its GoogleTest binary and the `radview` command line under CTest (same style as
+# cli_tests.cmake). A CTest fixture solves the Cornell box once, coarsely (a few seconds), and
+# meshes a small scene without solving it (a PLY without radiosity properties).
+set(VIEWER_OUT ${CMAKE_CURRENT_BINARY_DIR}/viewer_out)
+file(MAKE_DIRECTORY ${VIEWER_OUT})
+set(VIEWER_INPUT ${VIEWER_OUT}/cornell.ply)
+set(VIEWER_MESH_ONLY ${VIEWER_OUT}/mesh_only.ply)
+set(VIEWER_SOLVE_ARGS solve ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o ${VIEWER_INPUT}
+    --max-element-edge 80 --max-patch-edge 160)
+
+add_test(NAME viewer.make_input COMMAND radiosity_cli ${VIEWER_SOLVE_ARGS})
+add_test(NAME viewer.make_mesh_only
+         COMMAND radiosity_cli mesh ${CMAKE_CURRENT_SOURCE_DIR}/data/good_small.json -o ${VIEWER_MESH_ONLY})
+set_tests_properties(viewer.make_input viewer.make_mesh_only PROPERTIES FIXTURES_SETUP viewer_input)
+
+add_executable(viewer_test viewer_test.cpp)
+target_link_libraries(viewer_test PRIVATE rad::viewer GTest::gtest_main)
+list(JOIN VIEWER_SOLVE_ARGS " " VIEWER_SOLVE_LINE)
+target_compile_definitions(viewer_test PRIVATE
+  RAD_VIEWER_INPUT="${VIEWER_INPUT}"
+  RAD_VIEWER_SOLVE="$<TARGET_FILE:radiosity_cli> ${VIEWER_SOLVE_LINE}"
+  RAD_VIEWER_OUT="${VIEWER_OUT}")
+add_dependencies(viewer_test radiosity_cli radview)
+gtest_discover_tests(viewer_test PROPERTIES FIXTURES_REQUIRED viewer_input)
+
+# name, expected exit code, stderr regex, output file or "", then the arguments. Each case has its
+# own output folder (OUT in the output and the arguments), so that run_cli.cmake's check for
+# left-over temporary files does not see the files of cases running in parallel.
+function(viewer_cli_test name code regex output)
+  set(dir ${VIEWER_OUT}/cli/${name})
+  file(MAKE_DIRECTORY ${dir})
+  string(REPLACE "OUT/" "${dir}/" output "${output}")
+  list(TRANSFORM ARGN REPLACE "^OUT/" "${dir}/")
+  list(JOIN ARGN "|" joined)  # run_cli.cmake splits the command at "|"
+  set(args "-DCOMMAND=$<TARGET_FILE:radview>|${joined}" -DEXPECT_CODE=${code} -DOUTPUT_DIR=${dir})
+  if(NOT regex STREQUAL "")
+    list(APPEND args "-DEXPECT_STDERR=${regex}")
+  endif()
+  if(NOT output STREQUAL "")
+    list(APPEND args -DOUTPUT=${output})
+  endif()
+  add_test(NAME viewer_cli.${name}
+           COMMAND ${CMAKE_COMMAND} ${args} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_cli.cmake)
+  set_tests_properties(viewer_cli.${name} PROPERTIES FIXTURES_REQUIRED viewer_input)
+endfunction()
+
+# Good runs write the picture.
+viewer_cli_test(osmesa 0 "wrote" OUT/osmesa.png ${VIEWER_INPUT} -o OUT/osmesa.png)
+viewer_cli_test(software_flat 0 "wrote" OUT/software_flat.png
+                ${VIEWER_INPUT} -o OUT/software_flat.png --backend software --shade flat
+                --width 200 --height 150)
+viewer_cli_test(hdr 0 "wrote" OUT/hdr.hdr
+                ${VIEWER_INPUT} -o OUT/hdr.png --hdr OUT/hdr.hdr --width 64 --height 64)
+viewer_cli_test(wireframe_ssaa_camera 0 "wrote" OUT/wire.png
+                ${VIEWER_INPUT} -o OUT/wire.png --wireframe --ssaa 2 --exposure 2
+                --camera eye=278,273,-600,fov=50 --width 128 --height 128)
+viewer_cli_test(help 0 "" "" --help)
+
+# Bad input: exit 1, "radview: error: <where>: expected <what>, found <what>", no output.
+viewer_cli_test(bad.missing_input 1
+                "radview: error: .*nowhere.ply: expected a readable PLY file, found no such file"
+                OUT/missing.png ${VIEWER_OUT}/nowhere.ply -o OUT/missing.png)
+viewer_cli_test(bad.no_radiosity 1
+                "radview: error: .*mesh_only.ply: expected a radiosity result .*found a PLY without vertex radiosity_r, vertex radiosity_g, vertex radiosity_b, face radiosity_r, face radiosity_g, face radiosity_b"
+                OUT/no_radiosity.png ${VIEWER_MESH_ONLY} -o OUT/no_radiosity.png)
+viewer_cli_test(bad.camera 1 "radview: error: --camera: expected eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F.*found 2 number.s. for eye"
+                OUT/bad_camera.png ${VIEWER_INPUT} -o OUT/bad_camera.png --camera eye=1,2)
+viewer_cli_test(bad.camera_key 1 "radview: error: --camera: expected .*found the unknown key \"position\""
+                OUT/bad_camera2.png ${VIEWER_INPUT} -o OUT/bad_camera2.png --camera position=1,2,3)
+viewer_cli_test(bad.output_folder 1 "radview: error: .*no_such_folder/out.png: expected an output file in an existing folder"
+                "" ${VIEWER_INPUT} -o OUT/no_such_folder/out.png)
+
+# Usage errors: exit 2, no output.
+viewer_cli_test(usage.unknown_flag 2 "--frobnicate" OUT/usage1.png
+                ${VIEWER_INPUT} -o OUT/usage1.png --frobnicate)
+viewer_cli_test(usage.missing_output 2 "output" "" ${VIEWER_INPUT})
+viewer_cli_test(usage.missing_value 2 "width" OUT/usage2.png ${VIEWER_INPUT} -o OUT/usage2.png --width)
+viewer_cli_test(usage.bad_shade 2 "shade" OUT/usage3.png ${VIEWER_INPUT} -o OUT/usage3.png --shade phong)
+viewer_cli_test(usage.software_wireframe 2 "--wireframe.*OpenGL-only" OUT/usage4.png
+                ${VIEWER_INPUT} -o OUT/usage4.png --backend software --wireframe)
