@@ -192,6 +192,13 @@ ResultMesh loadResult(const std::string& path) {
     m.boundsMin = glm::min(m.boundsMin, p);
     m.boundsMax = glm::max(m.boundsMax, p);
   }
+  const PlyColumn* rgb[3] = {findColumn(ply.vertex, "red"), findColumn(ply.vertex, "green"),
+                             findColumn(ply.vertex, "blue")};
+  if (rgb[0] && rgb[1] && rgb[2]) {
+    m.vertexColour.resize(nv);
+    for (size_t i = 0; i < nv; ++i)
+      for (int k = 0; k < 3; ++k) m.vertexColour[i][k] = uint8_t(rgb[k]->values[i]);
+  }
   m.faces = ply.faces;
   m.faceRadiosity.resize(m.faces.size());
   for (size_t f = 0; f < m.faces.size(); ++f) {
@@ -302,7 +309,7 @@ glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& c, int width,
 
 namespace detail {
 
-DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure) {
+DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure, bool storedColours) {
   DrawList list;
   const size_t n = mesh.faces.size() * 3;
   list.positions.reserve(n);
@@ -317,7 +324,12 @@ DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure) {
       int v = mesh.faces[f][corner];
       const glm::dvec3& b = shade == Shading::Flat ? mesh.faceRadiosity[f] : mesh.vertexRadiosity[v];
       list.positions.push_back(mesh.positions[v]);
-      list.display.push_back(displayColour(b));
+      if (storedColours) {
+        const auto& c = mesh.vertexColour[v];
+        list.display.push_back(glm::vec4(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f, 1.0f));
+      } else {
+        list.display.push_back(displayColour(b));
+      }
       list.radiance.push_back(glm::vec4(glm::dvec3(b / kPi), 1.0));
     }
   return list;
@@ -336,7 +348,11 @@ Image render(const ResultMesh& mesh, const RenderOptions& o) {
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
   glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
-  detail::DrawList list = detail::buildDrawList(mesh, o.shade, effectiveExposure(mesh, o));
+  // Gouraud at the file's own exposure shows the file's colours, which carry the ambient term of
+  // an unconverged solve; anything else is computed from the radiosities.
+  const bool stored = o.shade == Shading::Smooth && !o.exposure && mesh.exposure &&
+                      !mesh.vertexColour.empty();
+  detail::DrawList list = detail::buildDrawList(mesh, o.shade, effectiveExposure(mesh, o), stored);
   std::vector<uint8_t> rgb;
   std::vector<float> radiance;
   if (o.backend == Backend::Software)

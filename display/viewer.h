@@ -29,6 +29,9 @@ struct ResultMesh {
   std::vector<glm::dvec3> vertexRadiosity;
   std::vector<std::array<int, 3>> faces;
   std::vector<glm::dvec3> faceRadiosity;
+  /// The file's display colours (red, green, blue), when present: sRGB(clamp(K·B)) plus, for
+  /// a solve stopped before convergence, K·ρ·ambient (DESIGN.md, "Result mesh").
+  std::vector<std::array<uint8_t, 3>> vertexColour;
   std::optional<ViewCamera> camera;  ///< from the `camera ...` header comment
   std::optional<double> exposure;    ///< from the `exposure K` header comment
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
@@ -93,7 +96,9 @@ struct DrawList {
   std::vector<glm::vec4> display;
   std::vector<glm::vec4> radiance;
 };
-DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure);
+/// storedColours: take the file's vertex colours (smooth shading at the file's exposure).
+DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure,
+                       bool storedColours = false);
 /// OpenGL rendering through OSMesa at width × height: bytes (RGB, BOTTOM row first) and, when
 /// radiance != nullptr, linear radiance (RGB floats, bottom row first).
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view,

@@ -320,3 +320,24 @@ TEST(ViewerInput, CameraText) {
 
 }  // namespace
 }  // namespace rad::viewer
+
+namespace rad::viewer {
+namespace {
+
+// A converged result's stored colours are exactly sRGB(clamp(K·B)), so drawing them or
+// computing them gives the same list; an unconverged result's carry the ambient term too.
+TEST(ViewerColours, StoredColoursAreTheComputedOnesOnceConverged) {
+  ResultMesh mesh = loadResult(RAD_VIEWER_INPUT);
+  ASSERT_FALSE(mesh.vertexColour.empty());
+  ASSERT_TRUE(mesh.exposure.has_value());
+  auto stored = detail::buildDrawList(mesh, Shading::Smooth, *mesh.exposure, true);
+  auto computed = detail::buildDrawList(mesh, Shading::Smooth, *mesh.exposure, false);
+  ASSERT_EQ(stored.display.size(), computed.display.size());
+  int differing = 0;
+  for (size_t i = 0; i < stored.display.size(); ++i)
+    differing += glm::length(stored.display[i] - computed.display[i]) > 1.5f / 255;
+  EXPECT_EQ(differing, 0);
+}
+
+}  // namespace
+}  // namespace rad::viewer
