@@ -63,7 +63,7 @@ struct Piece {
 /// A uniform grid over point ids, to find the points near a segment.
 class PointGrid {
  public:
-  PointGrid(const PointTable& table, const std::vector<int>& ids) : table_(table) {
+  PointGrid(const PointTable& table, const std::vector<int>& ids) {
     glm::dvec3 hi(-HUGE_VAL);
     lo_ = glm::dvec3(HUGE_VAL);
     for (int i : ids) {
@@ -100,7 +100,6 @@ class PointGrid {
     glm::dvec3 q = (p - lo_) / cell_;
     return {int64_t(std::floor(q.x)), int64_t(std::floor(q.y)), int64_t(std::floor(q.z))};
   }
-  const PointTable& table_;
   glm::dvec3 lo_;
   double cell_ = 1;
   std::unordered_map<Cell, std::vector<int>, Hash> cells_;

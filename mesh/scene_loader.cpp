@@ -344,24 +344,23 @@ class SceneReader {
   /// Mesh files often carry a few zero-area faces; they carry no light, so they are
   /// dropped, and the loader says so.
   void dropDegenerateFaces(Surface& surface, const Node& s) {
-    size_t before = surface.polygons.size();
-    auto degenerate = [](const Polygon& p) {
-      for (const auto& q : p.outer)
-        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return false;
-      return p.outer.size() < 3 || polygonArea(p) <= 0;
-    };
     for (const auto& p : surface.polygons)
       for (const auto& q : p.outer)
         if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
           s["mesh"].failWith("finite vertex coordinates", "NaN or infinity");
+    size_t before = surface.polygons.size();
+    auto degenerate = [](const Polygon& p) {
+      double size = ringDiameter(p.outer);
+      return p.outer.size() < 3 || !(polygonArea(p) > kMinRelativeArea * size * size);
+    };
     surface.polygons.erase(
         std::remove_if(surface.polygons.begin(), surface.polygons.end(), degenerate),
         surface.polygons.end());
     if (surface.polygons.empty())
       s["mesh"].failWith("faces of non-zero area", "only degenerate faces");
     if (surface.polygons.size() != before)
-      warnings_.push_back(s.where() + ": dropped " + std::to_string(before - surface.polygons.size()) +
-                          " degenerate faces");
+      scene_.warnings.push_back(s.where() + ": dropped " +
+                                std::to_string(before - surface.polygons.size()) + " degenerate faces");
   }
 
   void validatePolygon(const Polygon& polygon, const Node& s) {
@@ -523,9 +522,6 @@ class SceneReader {
 
   Scene& scene_;
   std::string file_, baseDir_;
-
- public:
-  std::vector<std::string> warnings_;
 };
 
 }  // namespace
@@ -569,7 +565,6 @@ Scene parseScene(const std::string& text, const std::string& path, const std::st
   scene.path = path;
   SceneReader reader(scene, path, baseDir);
   reader.read(root);
-  scene.warnings = std::move(reader.warnings_);
   return scene;
 }
 
