@@ -110,6 +110,15 @@ TEST(SceneTest, PlyFacesKeepTheirPolygonsAndArea) {
   EXPECT_NEAR(m.surfaces[0].area, 2 * 1 * 9, 1e-9);
 }
 
+TEST(SceneTest, DegenerateMeshFacesAreDroppedAndSaid) {
+  Scene s = parse(sceneWith(R"({"m": {"reflectance": [0.5, 0.5, 0.5]}})",
+                            R"([{"name": "d", "material": "m", "mesh": "with_degenerate.obj"}])"));
+  ASSERT_EQ(s.surfaces.size(), 1u);
+  EXPECT_EQ(s.surfaces[0].polygons.size(), 1u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("dropped 1 degenerate faces"), std::string::npos) << s.warnings[0];
+}
+
 TEST(SceneTest, LightsFogAndLightModelFollowOpenGL) {
   Scene s = parse(sceneWith(R"({"m": {"reflectance": [0.5, 0.5, 0.5]}})", kSquare,
                             R"("light_model": {"ambient": [0.1, 0.1, 0.1], "two_sided": true},
