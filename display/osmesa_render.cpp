@@ -1,8 +1,10 @@
 // The OpenGL backend of the viewer: fixed-function OpenGL through OSMesa (llvmpipe), exactly as
 // an interactive program would draw the result: lighting off, glColor per vertex,
 // glShadeModel(GL_SMOOTH) or GL_FLAT (the last vertex of a triangle gives its colour), depth
-// test on, matrices loaded with glLoadMatrixf. Only OpenGL 1.1 entry points are used, all
-// exported by libOSMesa; link OSMesa only (libGL in the same binary silently breaks it).
+// test on, matrices loaded with glLoadMatrixf; and the local model (renderOsMesaLocal): the
+// scene's lights, light model, materials and fog through fixed-function lighting. Only OpenGL
+// 1.1 entry points are used, all exported by libOSMesa; link OSMesa only (libGL in the same
+// binary silently breaks it).
 #include <GL/osmesa.h>
 
 #include <algorithm>
@@ -26,9 +28,8 @@ struct ContextDeleter {
 using Context = std::unique_ptr<osmesa_context, ContextDeleter>;
 
 /// Draws the list into `buffer` (RGBA, `type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first).
-void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
-              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-              GLenum type, void* buffer) {
+/// Creates an RGBA context with a 24-bit depth buffer and makes it current on `buffer`.
+Context makeCurrent(int width, int height, GLenum type, void* buffer) {
   Context ctx(OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr));
   if (!ctx)
     throw std::runtime_error(
@@ -46,7 +47,22 @@ void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const
     throw std::runtime_error("OpenGL: a " + std::to_string(width) + "x" + std::to_string(height) +
                              " picture exceeds the largest viewport, " + std::to_string(maxViewport[0]) +
                              "x" + std::to_string(maxViewport[1]) + " (use a smaller size or --ssaa)");
+  return ctx;
+}
 
+/// Checks glGetError after drawing and releases the context.
+void finish() {
+  glFinish();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw std::runtime_error("OpenGL: drawing failed with error 0x" + std::to_string(unsigned(error)));
+  OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+}
+
+void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
+              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+              GLenum type, void* buffer) {
+  Context ctx = makeCurrent(width, height, type, buffer);
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
@@ -80,14 +96,120 @@ void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const
     glDepthFunc(GL_LEQUAL);
     glDrawArrays(GL_TRIANGLES, 0, count);
   }
-  glFinish();
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-    throw std::runtime_error("OpenGL: drawing failed with error 0x" + std::to_string(unsigned(error)));
-  OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+  finish();
+}
+
+void setVec4(GLenum light, GLenum name, const glm::dvec4& v) {
+  const GLfloat f[4] = {GLfloat(v.x), GLfloat(v.y), GLfloat(v.z), GLfloat(v.w)};
+  glLightfv(light, name, f);
 }
 
 }  // namespace
+
+void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
+                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+                       std::vector<uint8_t>& rgb) {
+  const size_t pixels = size_t(width) * height;
+  std::vector<GLubyte> buffer(pixels * 4);
+  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DITHER);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixf(glm::value_ptr(projection));
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixf(glm::value_ptr(view));
+
+  // Lights are specified with the view matrix loaded: OpenGL stores their positions and spot
+  // directions in eye coordinates, i.e. fixed in the world.
+  const LightModel& lm = scene.lightModel;
+  const GLfloat ambient[4] = {GLfloat(lm.ambient.x), GLfloat(lm.ambient.y), GLfloat(lm.ambient.z),
+                              GLfloat(lm.ambient.w)};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, lm.localViewer ? GL_TRUE : GL_FALSE);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, lm.twoSided ? GL_TRUE : GL_FALSE);
+  GLint maxLights = 8;
+  glGetIntegerv(GL_MAX_LIGHTS, &maxLights);
+  if (int(scene.lights.size()) > maxLights)
+    throw std::runtime_error("OpenGL: the scene has " + std::to_string(scene.lights.size()) +
+                             " lights, this OpenGL supports " + std::to_string(maxLights));
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const GLenum id = GLenum(GL_LIGHT0 + i);
+    glEnable(id);
+    setVec4(id, GL_AMBIENT, l.ambient);
+    setVec4(id, GL_DIFFUSE, l.diffuse);
+    setVec4(id, GL_SPECULAR, l.specular);
+    if (l.type == Light::Type::Directional)
+      setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
+    else
+      setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
+    glLightf(id, GL_CONSTANT_ATTENUATION, GLfloat(l.attenuation.x));
+    glLightf(id, GL_LINEAR_ATTENUATION, GLfloat(l.attenuation.y));
+    glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
+    if (l.type == Light::Type::Spot) {
+      const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
+      glLightfv(id, GL_SPOT_DIRECTION, d);
+      glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
+      glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
+    } else {
+      glLightf(id, GL_SPOT_CUTOFF, 180.0f);
+    }
+  }
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);
+  glDisable(GL_COLOR_MATERIAL);
+  if (scene.fog) {
+    const Fog& f = *scene.fog;
+    glEnable(GL_FOG);
+    glFogi(GL_FOG_MODE, f.mode == Fog::Mode::Linear ? GL_LINEAR
+                        : f.mode == Fog::Mode::Exp  ? GL_EXP
+                                                    : GL_EXP2);
+    const GLfloat c[4] = {GLfloat(f.color.x), GLfloat(f.color.y), GLfloat(f.color.z), GLfloat(f.color.w)};
+    glFogfv(GL_FOG_COLOR, c);
+    glFogf(GL_FOG_START, GLfloat(f.start));
+    glFogf(GL_FOG_END, GLfloat(f.end));
+    glFogf(GL_FOG_DENSITY, GLfloat(f.density));
+    glHint(GL_FOG_HINT, GL_NICEST);
+  }
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
+  glNormalPointer(GL_FLOAT, 0, list.normals.data());
+  if (wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+  }
+  for (const LocalBatch& b : list.batches) {
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(b.ambient));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(b.diffuse));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, glm::value_ptr(b.emission));
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
+    glDrawArrays(GL_TRIANGLES, b.first, b.count);
+  }
+  if (wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_LIGHTING);
+    glDisable(GL_FOG);
+    glDisableClientState(GL_NORMAL_ARRAY);
+    glColor3ubv(kWireColour);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDepthFunc(GL_LEQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(list.positions.size()));
+  }
+  finish();
+  rgb.resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
+}
 
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view, int width,
                   int height, Shading shade, bool wireframe, std::vector<uint8_t>& rgb,

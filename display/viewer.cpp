@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include "display/raster.h"
@@ -15,6 +16,7 @@
 #include "mesh/error.h"
 #include "mesh/output_file.h"
 #include "mesh/ply_reader.h"
+#include "mesh/settings.h"
 
 namespace rad::viewer {
 namespace {
@@ -337,12 +339,31 @@ DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure, b
 
 }  // namespace detail
 
-Image render(const ResultMesh& mesh, const RenderOptions& o) {
+namespace {
+void checkSize(const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.ssaa < 1 || int64_t(o.width) * o.ssaa > raster::kMaxSize ||
       int64_t(o.height) * o.ssaa > raster::kMaxSize)
     throw inputError("image size", "width and height times --ssaa in 1.." + std::to_string(raster::kMaxSize),
                      std::to_string(o.width) + "x" + std::to_string(o.height) + " at --ssaa " +
                          std::to_string(o.ssaa));
+}
+
+/// A ResultMesh carrying only what camera fitting uses: the bounds and the scene's camera.
+ResultMesh boundsOnly(const LocalScene& local) {
+  ResultMesh m;
+  m.path = local.scene.path;
+  m.boundsMin = local.boundsMin;
+  m.boundsMax = local.boundsMax;
+  if (local.scene.camera) {
+    const Camera& c = *local.scene.camera;
+    m.camera = ViewCamera{c.eye, c.target, c.up, c.fovYDeg};
+  }
+  return m;
+}
+}  // namespace
+
+Image render(const ResultMesh& mesh, const RenderOptions& o) {
+  checkSize(o);
   if (o.wireframe && o.backend == Backend::Software)
     throw inputError("--wireframe", "--backend osmesa (wireframe is OpenGL-only)", "--backend software");
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
@@ -368,6 +389,90 @@ Image render(const ResultMesh& mesh, const RenderOptions& o) {
   return image;
 }
 
+LocalScene prepareLocalScene(Scene scene) {
+  if (scene.lights.empty())
+    throw inputError(scene.path, "a scene with lights for --mode local", "none");
+  LocalScene local;
+  local.mesh = buildPatchMesh(scene, resolveSettings(scene, {}).mesh());
+  local.scene = std::move(scene);
+  local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
+  local.boundsMax = -local.boundsMin;
+  for (auto v : local.mesh.mesh.vertices()) {
+    glm::dvec3 p = PatchMesh::toGlm(local.mesh.mesh.point(v));
+    local.boundsMin = glm::min(local.boundsMin, p);
+    local.boundsMax = glm::max(local.boundsMax, p);
+  }
+  if (local.mesh.elementCount() == 0) throw inputError(local.scene.path, "a scene with surfaces", "none");
+  return local;
+}
+
+LocalScene loadLocalScene(const std::string& path) { return prepareLocalScene(loadScene(path)); }
+
+ViewCamera effectiveCamera(const LocalScene& local, const RenderOptions& options) {
+  return effectiveCamera(boundsOnly(local), options);
+}
+
+namespace detail {
+
+LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
+  const PatchMesh& pm = local.mesh;
+  const Scene& scene = local.scene;
+  // Elements grouped by surface, one material batch per surface.
+  std::vector<std::vector<int>> bySurface(scene.surfaces.size());
+  for (int e = 0; e < pm.elementCount(); ++e) bySurface.at(size_t(pm.surface(e))).push_back(e);
+  LocalDrawList list;
+  list.positions.reserve(size_t(pm.elementCount()) * 3);
+  list.normals.reserve(size_t(pm.elementCount()) * 3);
+  for (size_t s = 0; s < bySurface.size(); ++s) {
+    if (bySurface[s].empty()) continue;
+    const Material& m = scene.materials.at(size_t(scene.surfaces[s].material));
+    LocalBatch b;
+    b.first = int(list.positions.size());
+    b.ambient = glm::vec4(m.ambient);
+    b.diffuse = glm::vec4(m.diffuse);
+    b.specular = glm::vec4(m.specular);
+    b.shininess = float(m.shininess);
+    // Emission normalised to full brightness: E / max component (lamps show their hue at full
+    // brightness; radiosity units have no fixed display scale).
+    const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
+    b.emission = peak > 0 ? glm::vec4(glm::vec3(m.emission / peak), 1.0f) : glm::vec4(0, 0, 0, 1);
+    for (int e : bySurface[s]) {
+      const TriMesh::FaceHandle f(e);
+      const glm::vec3 faceNormal(pm.normal(e));
+      for (auto v : pm.mesh.fv_range(f)) {
+        list.positions.push_back(glm::vec3(PatchMesh::toGlm(pm.mesh.point(v))));
+        list.normals.push_back(shade == Shading::Flat ? faceNormal
+                                                      : glm::vec3(PatchMesh::toGlm(pm.mesh.normal(v))));
+      }
+    }
+    b.count = int(list.positions.size()) - b.first;
+    list.batches.push_back(b);
+  }
+  return list;
+}
+
+}  // namespace detail
+
+Image renderLocal(const LocalScene& local, const RenderOptions& o) {
+  checkSize(o);
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode local", "--backend osmesa (the local model is OpenGL-only)", "--backend software");
+  if (o.exposure) throw inputError("--mode local", "no --exposure (lighting sets the brightness)", "--exposure");
+  if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  const ResultMesh bounds = boundsOnly(local);
+  viewProjection(bounds, effectiveCamera(bounds, o), w, h, &projection, &view);
+  detail::LocalDrawList list = detail::buildLocalDrawList(local, o.shade);
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaLocal(list, local.scene, projection, view, w, h, o.shade, o.wireframe, rgb);
+  Image image;
+  image.width = o.width;
+  image.height = o.height;
+  image.rgb = downsampleBytes(rgb, o.width, o.height, o.ssaa);
+  return image;
+}
+
 std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions& o) {
   raster::Target target(o.width, o.height, /*withItem=*/true, /*withColor=*/false);
   glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), o.width, o.height);
@@ -388,6 +493,21 @@ void writePng(const std::string& path, const Image& image) {
     return stbi_write_png_to_func(toStream, &out, image.width, image.height, 3, image.rgb.data(),
                                   image.width * 3);
   }, "PNG");
+}
+
+Image readPng(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
+  if (!data) {
+    const char* why = stbi_failure_reason();
+    throw inputError(path, "a readable PNG image", why ? why : "an unreadable file");
+  }
+  Image image;
+  image.width = w;
+  image.height = h;
+  image.rgb.assign(data, data + size_t(w) * h * 3);
+  stbi_image_free(data);
+  return image;
 }
 
 void writeHdr(const std::string& path, const Image& image) {

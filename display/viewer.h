@@ -14,6 +14,9 @@
 
 #include <glm/glm.hpp>
 
+#include "mesh/patch_mesh.h"
+#include "mesh/scene.h"
+
 namespace rad::viewer {
 
 /// gluLookAt / gluPerspective camera.
@@ -85,10 +88,56 @@ std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions&
 
 /// Writes the display colours as PNG, atomically. Throws InputError.
 void writePng(const std::string& path, const Image& image);
+/// Reads an 8-bit PNG (as written by writePng; other channel counts are converted to RGB) into
+/// an Image without radiance. Throws InputError naming the file.
+Image readPng(const std::string& path);
 /// Writes the radiance as Radiance HDR (RGBE), atomically. Throws InputError.
 void writeHdr(const std::string& path, const Image& image);
 
+// ---- Local-illumination mode (radview --mode local) -------------------------------------------
+// The scene lit by OpenGL's fixed-function model through OSMesa: the scene's `lights` (at most
+// 8), `light_model` and `fog`, one glMaterial per surface (ambient, diffuse, specular,
+// shininess), vertex normals of the patch mesh (smooth) or face normals with GL_FLAT (flat).
+// Emissive surfaces get GL_EMISSION = E / max(E.r, E.g, E.b): the emission colour normalised to
+// full brightness, so lamps show at their hue without any exposure rule. OSMesa only.
+
+/// A scene meshed for the local model. `scene` may be edited after preparation (materials,
+/// lights, fog, camera) as long as the geometry stays: the mesh depends on geometry only.
+struct LocalScene {
+  Scene scene;
+  PatchMesh mesh;
+  glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
+};
+
+/// Meshes the scene with its own settings (resolveSettings(scene, {}).mesh()). Throws
+/// InputError "<scene>: expected a scene with lights for --mode local, found none" without
+/// lights.
+LocalScene prepareLocalScene(Scene scene);
+/// loadScene + prepareLocalScene.
+LocalScene loadLocalScene(const std::string& path);
+/// The camera of a local render: options.camera, else the scene's, else a default view along +z.
+ViewCamera effectiveCamera(const LocalScene& local, const RenderOptions& options);
+/// Renders the local model (OSMesa). options.backend must be OsMesa; exposure and radiance are
+/// not used (InputError when set). Throws std::runtime_error when OSMesa is unavailable.
+Image renderLocal(const LocalScene& local, const RenderOptions& options);
+
 namespace detail {
+/// The local model's geometry, de-indexed (3 vertices per triangle), grouped by surface.
+struct LocalBatch {
+  int first = 0, count = 0;  ///< vertex range
+  glm::vec4 ambient{0.0f}, diffuse{0.0f}, specular{0.0f}, emission{0.0f};
+  float shininess = 0;
+};
+struct LocalDrawList {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<LocalBatch> batches;
+};
+LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade);
+/// Fixed-function lighting through OSMesa: bytes (RGB, BOTTOM row first).
+void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
+                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+                       std::vector<uint8_t>& rgb);
+
 /// Per-vertex colours of the triangles as drawn (de-indexed: 3 vertices per face), shared by
 /// both backends: positions, display colour in [0, 1] and radiance B/π.
 struct DrawList {

@@ -19,7 +19,9 @@ list(JOIN VIEWER_SOLVE_ARGS " " VIEWER_SOLVE_LINE)
 target_compile_definitions(viewer_test PRIVATE
   RAD_VIEWER_INPUT="${VIEWER_INPUT}"
   RAD_VIEWER_SOLVE="$<TARGET_FILE:radiosity_cli> ${VIEWER_SOLVE_LINE}"
-  RAD_VIEWER_OUT="${VIEWER_OUT}")
+  RAD_VIEWER_OUT="${VIEWER_OUT}"
+  RAD_SCENES="${PROJECT_SOURCE_DIR}/scenes"
+  RAD_GOLDEN_DIR="${CMAKE_CURRENT_SOURCE_DIR}/golden")
 add_dependencies(viewer_test radiosity_cli radview)
 gtest_discover_tests(viewer_test PROPERTIES FIXTURES_REQUIRED viewer_input)
 
@@ -78,3 +80,28 @@ viewer_cli_test(usage.missing_value 2 "width" OUT/usage2.png ${VIEWER_INPUT} -o 
 viewer_cli_test(usage.bad_shade 2 "shade" OUT/usage3.png ${VIEWER_INPUT} -o OUT/usage3.png --shade phong)
 viewer_cli_test(usage.software_wireframe 2 "--wireframe.*OpenGL-only" OUT/usage4.png
                 ${VIEWER_INPUT} -o OUT/usage4.png --backend software --wireframe)
+
+# Local-illumination mode (--mode local --scene SCENE.json): OpenGL lighting through OSMesa.
+set(VIEWER_CORNELL_SCENE ${PROJECT_SOURCE_DIR}/scenes/cornell.json)
+viewer_cli_test(local 0 "local lighting.*wrote" OUT/local.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} -o OUT/local.png --width 128 --height 128)
+viewer_cli_test(local_flat_wire_ssaa 0 "wrote" OUT/local_flat.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} -o OUT/local_flat.png --width 96
+                --height 64 --shade flat --wireframe --ssaa 2 --camera eye=278,273,-600,fov=50)
+viewer_cli_test(bad.local_no_lights 1
+                "radview: error: .*good_small.json: expected a scene with lights for --mode local, found none"
+                OUT/no_lights.png --mode local --scene ${CMAKE_CURRENT_SOURCE_DIR}/data/good_small.json
+                -o OUT/no_lights.png)
+viewer_cli_test(bad.local_missing_scene 1 "radview: error: .*nowhere.json" OUT/local_missing.png
+                --mode local --scene ${VIEWER_OUT}/nowhere.json -o OUT/local_missing.png)
+viewer_cli_test(usage.local_without_scene 2 "--scene.*required with --mode local" OUT/usage5.png
+                --mode local -o OUT/usage5.png)
+viewer_cli_test(usage.local_with_result 2 "--mode local takes --scene" OUT/usage6.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} ${VIEWER_INPUT} -o OUT/usage6.png)
+viewer_cli_test(usage.local_software 2 "--mode local is OpenGL-only" OUT/usage7.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} --backend software -o OUT/usage7.png)
+viewer_cli_test(usage.local_hdr 2 "--hdr.*radiosity-only" OUT/usage8.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} -o OUT/usage8.png --hdr OUT/usage8.hdr)
+viewer_cli_test(usage.radiosity_without_result 2 "RESULT.ply is required" OUT/usage9.png -o OUT/usage9.png)
+viewer_cli_test(usage.radiosity_with_scene 2 "--scene.*belongs to --mode local" OUT/usage10.png
+                ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} -o OUT/usage10.png)

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <map>
 
 #include "display/raster.h"
@@ -337,6 +338,291 @@ TEST(ViewerColours, StoredColoursAreTheComputedOnesOnceConverged) {
   for (size_t i = 0; i < stored.display.size(); ++i)
     differing += glm::length(stored.display[i] - computed.display[i]) > 1.5f / 255;
   EXPECT_EQ(differing, 0);
+}
+
+}  // namespace
+}  // namespace rad::viewer
+
+// ---- Local-illumination mode: the scene lit by OpenGL's fixed-function model ------------------
+namespace rad::viewer {
+namespace {
+
+constexpr int kLocalSize = 128;
+
+RenderOptions localOptions(int size = kLocalSize) {
+  RenderOptions o;
+  o.width = o.height = size;
+  return o;
+}
+
+/// Mean colour (0-255 per channel) of the (2r+1)² pixels around (x, y), top row first.
+glm::dvec3 meanAround(const Image& image, int x, int y, int r = 2) {
+  glm::dvec3 sum(0.0);
+  int n = 0;
+  for (int j = y - r; j <= y + r; ++j)
+    for (int i = x - r; i <= x + r; ++i) {
+      if (i < 0 || j < 0 || i >= image.width || j >= image.height) continue;
+      const uint8_t* p = &image.rgb[(size_t(j) * image.width + i) * 3];
+      sum += glm::dvec3(p[0], p[1], p[2]);
+      ++n;
+    }
+  return n ? sum / double(n) : sum;
+}
+
+/// The pixel (x, y, top row first) where the world point p lands in a render of `local`.
+glm::ivec2 pixelOf(const LocalScene& local, const RenderOptions& o, const glm::dvec3& p) {
+  ResultMesh bounds;
+  bounds.boundsMin = local.boundsMin;
+  bounds.boundsMax = local.boundsMax;
+  glm::mat4 mvp = viewProjection(bounds, effectiveCamera(local, o), o.width, o.height);
+  glm::vec4 c = mvp * glm::vec4(glm::vec3(p), 1.0f);
+  double x = (c.x / c.w * 0.5 + 0.5) * o.width, y = (c.y / c.w * 0.5 + 0.5) * o.height;
+  return {int(std::floor(x)), o.height - 1 - int(std::floor(y))};
+}
+
+int materialIndex(const Scene& scene, const std::string& name) {
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].name == name) return int(i);
+  ADD_FAILURE() << "no material " << name;
+  return 0;
+}
+
+class LocalTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    cornell_ = new LocalScene(loadLocalScene(std::string(RAD_SCENES) + "/cornell.json"));
+    empty_ = new LocalScene(loadLocalScene(std::string(RAD_SCENES) + "/cornell_empty.json"));
+  }
+  static void TearDownTestSuite() {
+    delete cornell_;
+    delete empty_;
+    cornell_ = empty_ = nullptr;
+  }
+  static LocalScene* cornell_;
+  static LocalScene* empty_;
+};
+LocalScene* LocalTest::cornell_ = nullptr;
+LocalScene* LocalTest::empty_ = nullptr;
+
+TEST_F(LocalTest, CornellShowsRedAndGreenWallsLitByThePointLight) {
+  const RenderOptions o = localOptions();
+  Image image = renderLocal(*cornell_, o);
+  ASSERT_EQ(image.rgb.size(), size_t(kLocalSize) * kLocalSize * 3);
+  // Every pixel inside the box's opening (all but a few border rows and columns, where the
+  // black background shows) is lit, at least by the global ambient term.
+  double mean = 0;
+  size_t black = 0;
+  const int border = kLocalSize / 16;
+  for (int y = border; y < kLocalSize - border; ++y)
+    for (int x = border; x < kLocalSize - border; ++x) {
+      size_t p = (size_t(y) * kLocalSize + x) * 3;
+      int sum = image.rgb[p] + image.rgb[p + 1] + image.rgb[p + 2];
+      mean += sum / 3.0;
+      black += sum == 0;
+    }
+  mean /= double(kLocalSize - 2 * border) * (kLocalSize - 2 * border);
+  EXPECT_GT(mean, 40) << "the picture is nearly black";
+  EXPECT_EQ(black, 0u) << "black pixels inside the box";
+
+  // Red wall x = 556 (left in the picture), green wall x = 0 (right), halfway up and deep.
+  glm::ivec2 red = pixelOf(*cornell_, o, {555, 274, 400});
+  glm::ivec2 green = pixelOf(*cornell_, o, {1, 274, 400});
+  EXPECT_LT(red.x, kLocalSize / 4);
+  EXPECT_GT(green.x, 3 * kLocalSize / 4);
+  glm::dvec3 r = meanAround(image, red.x, red.y), g = meanAround(image, green.x, green.y);
+  EXPECT_GT(r.x, 2 * r.y) << "red wall " << r.x << " " << r.y << " " << r.z;
+  EXPECT_GT(r.x, 2 * r.z);
+  EXPECT_GT(r.x, 60);
+  EXPECT_GT(g.y, 1.5 * g.x) << "green wall " << g.x << " " << g.y << " " << g.z;
+  EXPECT_GT(g.y, 1.5 * g.z);
+  EXPECT_GT(g.y, 60);
+}
+
+TEST_F(LocalTest, PointLightLightsTheFloorCentreMoreThanItsCorners) {
+  // The empty box: nothing stands on the floor. The light is at (278, 540, 279.6).
+  const RenderOptions o = localOptions();
+  Image image = renderLocal(*empty_, o);
+  glm::ivec2 centre = pixelOf(*empty_, o, {278, 0, 279.6});
+  glm::ivec2 farLeft = pixelOf(*empty_, o, {500, 0, 500});
+  glm::ivec2 farRight = pixelOf(*empty_, o, {50, 0, 500});
+  double c = meanAround(image, centre.x, centre.y, 1).x;
+  double l = meanAround(image, farLeft.x, farLeft.y, 1).x;
+  double r = meanAround(image, farRight.x, farRight.y, 1).x;
+  EXPECT_GT(c, l + 10) << "centre " << c << ", far left " << l;
+  EXPECT_GT(c, r + 10) << "centre " << c << ", far right " << r;
+}
+
+TEST_F(LocalTest, SmoothAndFlatShadingBothDrawTheScene) {
+  RenderOptions o = localOptions();
+  Image smooth = renderLocal(*cornell_, o);
+  o.shade = Shading::Flat;
+  Image flat = renderLocal(*cornell_, o);
+  // Same geometry and lighting: the pictures agree closely on average but are not identical.
+  Agreement a = compare(smooth, flat);
+  EXPECT_LT(a.meanAbs, 4.0);
+  EXPECT_GT(a.shareAny, 0.01);
+}
+
+TEST_F(LocalTest, LinearFogLerpsDistantPixelsTowardsTheFogColour) {
+  const RenderOptions o = localOptions();
+  LocalScene fogged = *empty_;
+  Fog fog;
+  fog.mode = Fog::Mode::Linear;
+  fog.color = glm::dvec4(0.2, 0.4, 0.9, 1.0);
+  fog.start = 850;  // eye distance along the view axis; the camera is at z = -800
+  fog.end = 1450;
+  fogged.scene.fog = fog;
+  Image clear = renderLocal(*empty_, o), foggy = renderLocal(fogged, o);
+  // Back wall (eye depth 1359.2): fog factor f = (end - z) / (end - start).
+  glm::ivec2 back = pixelOf(*empty_, o, {278, 420, 559.2});
+  const double f = (fog.end - 1359.2) / (fog.end - fog.start);
+  glm::dvec3 before = meanAround(clear, back.x, back.y, 1), after = meanAround(foggy, back.x, back.y, 1);
+  for (int c = 0; c < 3; ++c) {
+    double expect = f * before[c] + (1 - f) * 255 * fog.color[c];
+    EXPECT_NEAR(after[c], expect, 8) << "channel " << c << ": before " << before[c];
+  }
+  // Near pixels (the front edge of the floor, eye depth about 810) keep their colour.
+  glm::ivec2 near = pixelOf(*empty_, o, {278, 0, 10});
+  glm::dvec3 n0 = meanAround(clear, near.x, near.y, 0), n1 = meanAround(foggy, near.x, near.y, 0);
+  EXPECT_LT(glm::length(n0 - n1), 3.0) << "near floor " << n0.x << " vs " << n1.x;
+}
+
+TEST_F(LocalTest, SpecularHighlightOnlyWithSpecularMaterial) {
+  const RenderOptions o = localOptions();
+  // The Cornell materials have no specular colour: switching the light's specular off changes
+  // nothing.
+  LocalScene noLightSpecular = *cornell_;
+  noLightSpecular.scene.lights[0].specular = glm::dvec4(0, 0, 0, 1);
+  Image plain = renderLocal(*cornell_, o);
+  EXPECT_EQ(compare(plain, renderLocal(noLightSpecular, o)).maxDiff, 0);
+  // A shiny white material: a highlight appears on the back wall behind the light (infinite
+  // viewer: the half vector meets the back wall's normal where the light is straight in front).
+  LocalScene shiny = *cornell_;
+  Material& white = shiny.scene.materials[size_t(materialIndex(shiny.scene, "white"))];
+  white.specular = glm::dvec4(1, 1, 1, 1);
+  white.shininess = 30;
+  Image highlighted = renderLocal(shiny, o);
+  // (The ceiling also catches a grazing highlight near the front: N·L is barely positive there
+  // and the half vector is almost its normal, as fixed-function OpenGL computes it.)
+  const glm::ivec2 behindLight = pixelOf(*cornell_, o, {278, 530, 559.2});
+  const glm::ivec2 backCentre = pixelOf(*cornell_, o, {400, 300, 559.2});
+  int darker = 0, peak = 0;
+  for (int y = 0; y < kLocalSize; ++y)
+    for (int x = 0; x < kLocalSize; ++x) {
+      size_t p = (size_t(y) * kLocalSize + x) * 3;
+      int gain = 0;
+      for (int c = 0; c < 3; ++c) {
+        int d = int(highlighted.rgb[p + c]) - int(plain.rgb[p + c]);
+        darker += d < -1;
+        gain += d;
+      }
+      if (std::abs(x - behindLight.x) <= 3 && std::abs(y - behindLight.y) <= 3) peak = std::max(peak, gain);
+    }
+  EXPECT_EQ(darker, 0) << "specular light only adds";
+  EXPECT_GT(peak, 120) << "no highlight on the back wall behind the light";
+  // Lower on the back wall, away from the mirror direction, the highlight has faded.
+  glm::dvec3 lower0 = meanAround(plain, backCentre.x, backCentre.y, 1);
+  glm::dvec3 lower1 = meanAround(highlighted, backCentre.x, backCentre.y, 1);
+  EXPECT_LT(lower1.x - lower0.x, 0.5 * peak / 3);
+}
+
+TEST_F(LocalTest, OptionsAndScenesTheLocalModelRefuses) {
+  RenderOptions o = localOptions(16);
+  o.backend = Backend::Software;
+  EXPECT_THROW(renderLocal(*cornell_, o), InputError);
+  o = localOptions(16);
+  o.radiance = true;
+  EXPECT_THROW(renderLocal(*cornell_, o), InputError);
+  Scene dark = cornell_->scene;
+  dark.lights.clear();
+  try {
+    prepareLocalScene(dark);
+    ADD_FAILURE() << "a scene without lights was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected a scene with lights for --mode local, found none"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rad::viewer
+
+// ---- Golden images: 128×128 OSMesa renders compared with tests/golden/*.png -------------------
+// A pixel is bad when some channel differs by more than 3/255; at most 0.5 % may be bad. On
+// failure actual, expected and difference (|a - e| × 16) PNGs land in RAD_VIEWER_OUT/golden/.
+// A missing golden fails. RAD_REGENERATE_GOLDEN=1 rewrites the goldens instead of comparing.
+namespace rad::viewer {
+namespace {
+
+constexpr int kGoldenSize = 128;
+constexpr int kGoldenTolerance = 3;
+constexpr double kGoldenBadShare = 0.005;
+
+void checkGolden(const std::string& name, const Image& actual) {
+  namespace fs = std::filesystem;
+  const std::string golden = std::string(RAD_GOLDEN_DIR) + "/" + name + ".png";
+  const char* regenerate = std::getenv("RAD_REGENERATE_GOLDEN");
+  if (regenerate && std::string(regenerate) == "1") {
+    writePng(golden, actual);
+    std::cout << "[ golden   ] wrote " << golden << "\n";
+    return;
+  }
+  const fs::path outDir = fs::path(RAD_VIEWER_OUT) / "golden";
+  fs::create_directories(outDir);
+  const std::string actualPath = (outDir / (name + "_actual.png")).string();
+  if (!fs::exists(golden)) {
+    writePng(actualPath, actual);
+    ADD_FAILURE() << "missing golden image " << golden << " (actual picture: " << actualPath
+                  << "; set RAD_REGENERATE_GOLDEN=1 to create it)";
+    return;
+  }
+  const Image expected = readPng(golden);
+  if (expected.width != actual.width || expected.height != actual.height) {
+    writePng(actualPath, actual);
+    ADD_FAILURE() << golden << " is " << expected.width << "x" << expected.height << ", the render "
+                  << actual.width << "x" << actual.height << " (actual: " << actualPath << ")";
+    return;
+  }
+  Image difference = actual;
+  size_t bad = 0, pixels = size_t(actual.width) * actual.height;
+  int worst = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    int pixelWorst = 0;
+    for (int c = 0; c < 3; ++c) {
+      int d = std::abs(int(actual.rgb[p * 3 + c]) - int(expected.rgb[p * 3 + c]));
+      difference.rgb[p * 3 + c] = uint8_t(std::min(255, d * 16));
+      pixelWorst = std::max(pixelWorst, d);
+    }
+    bad += pixelWorst > kGoldenTolerance;
+    worst = std::max(worst, pixelWorst);
+  }
+  const double share = double(bad) / pixels;
+  if (share > kGoldenBadShare) {
+    const std::string expectedPath = (outDir / (name + "_expected.png")).string();
+    const std::string diffPath = (outDir / (name + "_difference.png")).string();
+    writePng(actualPath, actual);
+    writePng(expectedPath, expected);
+    writePng(diffPath, difference);
+    ADD_FAILURE() << name << ": " << bad << " pixels (" << 100 * share << " %) differ by more than "
+                  << kGoldenTolerance << "/255 from " << golden << " (at most "
+                  << 100 * kGoldenBadShare << " % may; worst " << worst << "/255). See " << actualPath
+                  << ", " << expectedPath << ", " << diffPath;
+  }
+}
+
+TEST_F(ViewerTest, GoldenCornellRadiositySmooth) {
+  checkGolden("cornell_radiosity_smooth",
+              render(mesh(), options(Backend::OsMesa, Shading::Smooth, kGoldenSize)));
+}
+
+TEST_F(ViewerTest, GoldenCornellRadiosityFlat) {
+  checkGolden("cornell_radiosity_flat",
+              render(mesh(), options(Backend::OsMesa, Shading::Flat, kGoldenSize)));
+}
+
+TEST_F(LocalTest, GoldenCornellLocal) {
+  checkGolden("cornell_local", renderLocal(*cornell_, localOptions(kGoldenSize)));
 }
 
 }  // namespace
