@@ -121,10 +121,11 @@ class ProgressiveSolver {
   std::vector<FormFactors> sampleFactors_;  // one per sample of the current shot
 };
 
-/// Stratified samples over a patch, at least `minimum` of them. A patch with fewer elements
-/// splits each element into 4ᵏ equal triangles (midpoint subdivision) and shoots a share of it
-/// from each centroid; a patch with more splits its own triangle into 4ᵏ ≥ minimum parts, and
-/// each part shoots the power of the elements whose centroids lie in it from its centroid.
+/// Stratified samples over a patch, about `minimum` of them. A patch with fewer elements splits
+/// each element into 4ᵏ equal triangles (midpoint subdivision) and shoots a share of it from
+/// each centroid; a patch with more splits its own triangle into 4ᵏ ≥ minimum parts, each of
+/// which shoots, from its centroid, the elements' power in proportion to their overlap with it
+/// (parts no element overlaps are dropped). Each element's weights sum to 1.
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum);
 
 }  // namespace rad

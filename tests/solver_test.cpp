@@ -2,6 +2,7 @@
 #include <cmath>
 #include <map>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
@@ -380,6 +381,36 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
     }
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(power[k] / (emitted[k] / (1 - rho)), 1.0, 1e-6) << "rho " << rho;
+  }
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// Every element's power is shot exactly once in total (weights sum to 1), from points on the
+/// patch, and the samples are at least as many as asked for.
+TEST(SamplesTest, StratifiedSamplesCoverEachElementOnce) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh mesh = buildPatchMesh(scene, {58, 116});
+  for (int minimum : {1, 4, 16, 64}) {
+    for (int p = 0; p < int(mesh.patches.size()); p += 7) {
+      const Patch& patch = mesh.patches[p];
+      auto samples = patchSamples(mesh, p, minimum);
+      EXPECT_FALSE(samples.empty()) << p;
+      std::map<int, double> weight;
+      for (const auto& s : samples) {
+        for (size_t k = 0; k < s.elements.size(); ++k) weight[s.elements[k]] += s.weights[k];
+        // On the patch's plane, inside its triangle (within round-off).
+        glm::dvec3 n = glm::normalize(glm::cross(patch.corners[1] - patch.corners[0],
+                                                 patch.corners[2] - patch.corners[0]));
+        EXPECT_NEAR(glm::dot(s.point - patch.corners[0], n), 0.0, 1e-9 * scene.diagonal());
+      }
+      ASSERT_EQ(weight.size(), patch.elements.size()) << "patch " << p;
+      for (const auto& [e, w] : weight) EXPECT_NEAR(w, 1.0, 1e-12) << "element " << e;
+    }
   }
 }
 
