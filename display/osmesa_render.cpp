@@ -20,7 +20,7 @@ namespace rad::viewer::detail {
 namespace {
 
 /// Display colour of wireframe edges.
-constexpr GLubyte kWireColour[3] = {16, 16, 16};
+constexpr GLubyte kWireColour[3] = {kWireByte, kWireByte, kWireByte};
 
 struct ContextDeleter {
   void operator()(osmesa_context* c) const { OSMesaDestroyContext(c); }
@@ -104,30 +104,9 @@ void setVec4(GLenum light, GLenum name, const glm::dvec4& v) {
   glLightfv(light, name, f);
 }
 
-}  // namespace
-
-void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
-                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-                       std::vector<uint8_t>& rgb) {
-  const size_t pixels = size_t(width) * height;
-  std::vector<GLubyte> buffer(pixels * 4);
-  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  glViewport(0, 0, width, height);
-  glClearColor(0, 0, 0, 1);
-  glClearDepth(1.0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DITHER);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(glm::value_ptr(projection));
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixf(glm::value_ptr(view));
-
-  // Lights are specified with the view matrix loaded: OpenGL stores their positions and spot
-  // directions in eye coordinates, i.e. fixed in the world.
+/// The scene's light model and lights (GL_LIGHT0...), specified with the view matrix loaded:
+/// OpenGL stores their positions and spot directions in eye coordinates, i.e. fixed in the world.
+void setupLights(const Scene& scene) {
   const LightModel& lm = scene.lightModel;
   const GLfloat ambient[4] = {GLfloat(lm.ambient.x), GLfloat(lm.ambient.y), GLfloat(lm.ambient.z),
                               GLfloat(lm.ambient.w)};
@@ -162,6 +141,31 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
       glLightf(id, GL_SPOT_CUTOFF, 180.0f);
     }
   }
+}
+
+}  // namespace
+
+void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
+                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+                       std::vector<uint8_t>& rgb) {
+  const size_t pixels = size_t(width) * height;
+  std::vector<GLubyte> buffer(pixels * 4);
+  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DITHER);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixf(glm::value_ptr(projection));
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixf(glm::value_ptr(view));
+
+  setupLights(scene);
   glEnable(GL_LIGHTING);
   glEnable(GL_NORMALIZE);
   glDisable(GL_COLOR_MATERIAL);
@@ -200,6 +204,69 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
     glDisable(GL_LIGHTING);
     glDisable(GL_FOG);
     glDisableClientState(GL_NORMAL_ARRAY);
+    glColor3ubv(kWireColour);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDepthFunc(GL_LEQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(list.positions.size()));
+  }
+  finish();
+  rgb.resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
+}
+
+void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
+                        const glm::mat4& view, int width, int height, Shading shade,
+                        bool wireframe, std::vector<uint8_t>& rgb) {
+  const size_t pixels = size_t(width) * height;
+  std::vector<GLubyte> buffer(pixels * 4);
+  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
+  glViewport(0, 0, width, height);
+  glClearColor(0, 0, 0, 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DITHER);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixf(glm::value_ptr(projection));
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixf(glm::value_ptr(view));
+  setupLights(scene);
+  // Diffuse and ambient come from radiosity: the material's are zero and the vertex colour is
+  // the emission; lighting adds only the specular term, summed after as a separate colour.
+  glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SEPARATE_SPECULAR_COLOR);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);
+  const GLfloat zero[4] = {0, 0, 0, 1};
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, zero);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, zero);
+  glColorMaterial(GL_FRONT_AND_BACK, GL_EMISSION);
+  glEnable(GL_COLOR_MATERIAL);
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
+  glNormalPointer(GL_FLOAT, 0, list.normals.data());
+  glColorPointer(4, GL_FLOAT, 0, list.colours.data());
+  if (wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+  }
+  for (const LocalBatch& b : list.batches) {
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
+    glDrawArrays(GL_TRIANGLES, b.first, b.count);
+  }
+  if (wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_COLOR_MATERIAL);
+    glDisable(GL_LIGHTING);
+    glDisableClientState(GL_NORMAL_ARRAY);
+    glDisableClientState(GL_COLOR_ARRAY);
     glColor3ubv(kWireColour);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDepthFunc(GL_LEQUAL);

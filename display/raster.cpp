@@ -994,4 +994,85 @@ void drawTriangles(Target& target, const State& state, const glm::vec4* clip, si
                     fixed.data(), codes.data());
 }
 
+void drawLines(Target& target, const State& state, const glm::vec4* clip, size_t vertexCount,
+               const uint32_t* indices, size_t lineCount, const glm::vec4& color, float depthBias) {
+  const int W = target.width, H = target.height;
+  if (W <= 0 || H <= 0) return;
+  int sx0 = 0, sy0 = 0, sx1 = W, sy1 = H;  // pixel range [sx0, sx1) x [sy0, sy1)
+  if (state.scissorTest) {
+    sx0 = std::max(sx0, state.scissor.x);
+    sy0 = std::max(sy0, state.scissor.y);
+    sx1 = std::min(sx1, state.scissor.x + state.scissor.width);
+    sy1 = std::min(sy1, state.scissor.y + state.scissor.height);
+    if (sx0 >= sx1 || sy0 >= sy1) return;
+  }
+  const bool zeroToOne = state.clipDepth == ClipDepth::ZeroToOne;
+  const bool less = state.depthFunc == DepthFunc::Less;
+  const bool writeColor = !target.color.empty();
+  const bool countHits = target.hits.size() == size_t(W) * H;
+  // Signed distances to the near and far planes (inside >= 0).
+  auto nearD = [&](const glm::dvec4& v) { return zeroToOne ? v.z : v.z + v.w; };
+  auto farD = [](const glm::dvec4& v) { return v.w - v.z; };
+  for (size_t s = 0; s < lineCount; ++s) {
+    size_t i0 = 2 * s, i1 = 2 * s + 1;
+    if (indices) {
+      i0 = indices[2 * s];
+      i1 = indices[2 * s + 1];
+    }
+    if (i0 >= vertexCount || i1 >= vertexCount)
+      throw std::out_of_range("raster::drawLines: vertex index out of range");
+    glm::dvec4 a(clip[i0]), b(clip[i1]);
+    // Homogeneous clipping against near and far.
+    bool visible = true;
+    for (int plane = 0; plane < 2 && visible; ++plane) {
+      const double da = plane == 0 ? nearD(a) : farD(a), db = plane == 0 ? nearD(b) : farD(b);
+      if (da < 0 && db < 0) visible = false;
+      else if (da < 0) a = a + (b - a) * (da / (da - db));
+      else if (db < 0) b = b + (a - b) * (db / (db - da));
+    }
+    if (!visible || a.w <= 0 || b.w <= 0) continue;
+    auto toWindow = [&](const glm::dvec4& v) {
+      const glm::dvec3 n = glm::dvec3(v) / v.w;
+      return glm::dvec3((n.x + 1) * 0.5 * W, (n.y + 1) * 0.5 * H, zeroToOne ? n.z : (n.z + 1) * 0.5);
+    };
+    glm::dvec3 p0 = toWindow(a), p1 = toWindow(b);
+    // Liang-Barsky against the viewport rectangle.
+    double t0 = 0, t1 = 1;
+    const glm::dvec3 d = p1 - p0;
+    const double pq[4][2] = {{-d.x, p0.x}, {d.x, W - p0.x}, {-d.y, p0.y}, {d.y, H - p0.y}};
+    for (const auto& e : pq) {
+      if (e[0] == 0) {
+        if (e[1] < 0) visible = false;
+      } else {
+        const double r = e[1] / e[0];
+        if (e[0] < 0) t0 = std::max(t0, r);
+        else t1 = std::min(t1, r);
+      }
+    }
+    if (!visible || t0 > t1) continue;
+    const glm::dvec3 q0 = p0 + d * t0, q1 = p0 + d * t1;
+    const bool xMajor = std::abs(d.x) >= std::abs(d.y);
+    const int major = xMajor ? 0 : 1, minor = 1 - major;
+    const double lo = std::min(q0[major], q1[major]), hi = std::max(q0[major], q1[major]);
+    const double span = q1[major] - q0[major];
+    if (span == 0) continue;
+    const int first = int(std::ceil(lo - 0.5)), last = int(std::ceil(hi - 0.5)) - 1;
+    for (int k = first; k <= last; ++k) {
+      const double t = (k + 0.5 - q0[major]) / span;
+      const int m = int(std::floor(q0[minor] + t * (q1[minor] - q0[minor])));
+      const int x = xMajor ? k : m, y = xMajor ? m : k;
+      if (x < sx0 || x >= sx1 || y < sy0 || y >= sy1) continue;
+      float z = float(q0.z + t * (q1.z - q0.z));
+      z = std::clamp(less ? z - depthBias : z + depthBias, 0.0f, 1.0f);
+      const size_t p = target.index(x, y);
+      if (state.depthTest) {
+        if (less ? !(z < target.depth[p]) : !(z > target.depth[p])) continue;
+        if (state.depthWrite) target.depth[p] = z;
+      }
+      if (writeColor) target.color[p] = color;
+      if (countHits) ++target.hits[p];
+    }
+  }
+}
+
 }  // namespace raster

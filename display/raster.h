@@ -117,4 +117,25 @@ void drawTriangles(Target& target, const State& state, const glm::vec4* clip, si
                    const uint32_t* indices, size_t triangleCount, const uint32_t* ids = nullptr,
                    const glm::vec4* colors = nullptr);
 
+/// Draws line segments given in clip space into `target`, in one constant colour.
+/// - indices: 2 vertex indices per segment, all < vertexCount (else std::out_of_range); null =
+///   non-indexed, segment s uses vertices 2s, 2s+1.
+/// Pipeline: each segment is clipped in homogeneous space against the near and far planes (per
+/// state.clipDepth), projected to window coordinates (as for triangles) and clipped to the
+/// viewport [0, width] x [0, height] (Liang-Barsky). Rasterisation is a DDA on pixel centres
+/// along the major axis (|dx| >= |dy|: x, else y): the pixels whose centre coordinate c on
+/// that axis lies in [min, max) of the endpoints' (half-open, independent of the segment's
+/// direction, so a shared edge drawn from either end gives the same pixels) get, on the minor
+/// axis, the pixel containing the segment's point at c (floor). So a segment covers one pixel
+/// per column (or row), like OpenGL's diamond-exit rule up to ties. Depth is interpolated
+/// linearly in window space (as OpenGL does for lines) and moved TOWARD THE VIEWER by
+/// `depthBias` (window depth units: subtracted for DepthFunc::Less, added for Greater, then
+/// clamped to [0, 1]), so that edges drawn after their own faces pass the depth test.
+/// Depth test/write and scissor follow `state`; cull and shade are ignored. The colour is
+/// written when the target has a colour buffer; the item buffer is not touched; the hits hook
+/// counts fragments written.
+void drawLines(Target& target, const State& state, const glm::vec4* clip, size_t vertexCount,
+               const uint32_t* indices, size_t lineCount, const glm::vec4& color,
+               float depthBias = 0.0f);
+
 }  // namespace raster

@@ -118,7 +118,8 @@ std::vector<float> downsampleFloats(const std::vector<float>& big, int width, in
 
 /// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.
 void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int width, int height,
-                    Shading shade, std::vector<uint8_t>& rgb, std::vector<float>* radiance) {
+                    Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
+                    std::vector<float>* radiance) {
   raster::Target target(width, height, /*withItem=*/false, /*withColor=*/true);
   raster::State state;
   state.shade = shade == Shading::Flat ? raster::Shade::Flat : raster::Shade::Smooth;
@@ -126,6 +127,7 @@ void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int widt
   raster::transform(mvp, list.positions, clip);
   const size_t n = list.positions.size();
   raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.display.data());
+  if (wireframe) detail::drawSoftwareWireframe(target, clip, nullptr);
   rgb.resize(size_t(width) * height * 3);
   for (size_t p = 0; p < target.color.size(); ++p)
     for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = toByte(target.color[p][c]);
@@ -201,7 +203,18 @@ ResultMesh loadResult(const std::string& path) {
     for (size_t i = 0; i < nv; ++i)
       for (int k = 0; k < 3; ++k) m.vertexColour[i][k] = uint8_t(rgb[k]->values[i]);
   }
+  const PlyColumn* nrm[3] = {findColumn(ply.vertex, "nx"), findColumn(ply.vertex, "ny"),
+                             findColumn(ply.vertex, "nz")};
+  if (nrm[0] && nrm[1] && nrm[2]) {
+    m.vertexNormal.resize(nv);
+    for (size_t i = 0; i < nv; ++i)
+      m.vertexNormal[i] = glm::vec3(nrm[0]->values[i], nrm[1]->values[i], nrm[2]->values[i]);
+  }
   m.faces = ply.faces;
+  if (const PlyColumn* surface = findColumn(ply.face, "surface")) {
+    m.faceSurface.resize(m.faces.size());
+    for (size_t f = 0; f < m.faces.size(); ++f) m.faceSurface[f] = int(surface->values[f]);
+  }
   m.faceRadiosity.resize(m.faces.size());
   for (size_t f = 0; f < m.faces.size(); ++f) {
     glm::dvec3 b(fb[0]->values[f], fb[1]->values[f], fb[2]->values[f]);
@@ -311,6 +324,36 @@ glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& c, int width,
 
 namespace detail {
 
+void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>& clip,
+                           const std::vector<uint32_t>* triangles) {
+  const size_t triangleCount = triangles ? triangles->size() / 3 : clip.size() / 3;
+  const raster::State state;
+  const glm::vec4 colour(glm::vec3(kWireByte / 255.0f), 1.0f);
+  const double W = target.width, H = target.height;
+  for (size_t t = 0; t < triangleCount; ++t) {
+    uint32_t v[3];
+    for (int k = 0; k < 3; ++k) v[k] = triangles ? (*triangles)[3 * t + k] : uint32_t(3 * t + k);
+    const uint32_t edges[6] = {v[0], v[1], v[1], v[2], v[2], v[0]};
+    // Bias: the triangle's largest window-depth slope per pixel (its depth plane, when all three
+    // vertices are in front of the eye) plus kWireDepthBias, as glPolygonOffset(1, 1) pushes the
+    // fill back in OpenGL.
+    double slope = 0;
+    glm::dvec3 w[3];
+    bool inFront = true;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec4 c(clip[v[k]]);
+      if (c.w <= 0) inFront = false;
+      else w[k] = glm::dvec3((c.x / c.w + 1) * 0.5 * W, (c.y / c.w + 1) * 0.5 * H, (c.z / c.w + 1) * 0.5);
+    }
+    if (inFront) {
+      const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+      if (std::abs(n.z) > 1e-12) slope = std::max(std::abs(n.x / n.z), std::abs(n.y / n.z));
+    }
+    raster::drawLines(target, state, clip.data(), clip.size(), edges, 3, colour,
+                      float(slope + kWireDepthBias));
+  }
+}
+
 DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure, bool storedColours) {
   DrawList list;
   const size_t n = mesh.faces.size() * 3;
@@ -348,6 +391,18 @@ void checkSize(const RenderOptions& o) {
                          std::to_string(o.ssaa));
 }
 
+/// Checks that every face has a surface index of `scene`; where names the mode.
+void checkFaceSurfaces(const ResultMesh& mesh, const Scene& scene, const std::string& where) {
+  if (mesh.faceSurface.size() != mesh.faces.size())
+    throw inputError(mesh.path, "a result with the face property `surface` (for " + where + ")", "none");
+  for (size_t f = 0; f < mesh.faceSurface.size(); ++f)
+    if (mesh.faceSurface[f] < 0 || size_t(mesh.faceSurface[f]) >= scene.surfaces.size())
+      throw inputError(mesh.path + ": face " + std::to_string(f) + ": surface",
+                       "a surface index of " + scene.path + " (0.." +
+                           std::to_string(int(scene.surfaces.size()) - 1) + ")",
+                       std::to_string(mesh.faceSurface[f]));
+}
+
 /// A ResultMesh carrying only what camera fitting uses: the bounds and the scene's camera.
 ResultMesh boundsOnly(const LocalScene& local) {
   ResultMesh m;
@@ -364,8 +419,6 @@ ResultMesh boundsOnly(const LocalScene& local) {
 
 Image render(const ResultMesh& mesh, const RenderOptions& o) {
   checkSize(o);
-  if (o.wireframe && o.backend == Backend::Software)
-    throw inputError("--wireframe", "--backend osmesa (wireframe is OpenGL-only)", "--backend software");
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
   glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
@@ -377,7 +430,7 @@ Image render(const ResultMesh& mesh, const RenderOptions& o) {
   std::vector<uint8_t> rgb;
   std::vector<float> radiance;
   if (o.backend == Backend::Software)
-    renderSoftware(list, mvp, w, h, o.shade, rgb, o.radiance ? &radiance : nullptr);
+    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr);
   else
     detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
                          o.radiance ? &radiance : nullptr);
@@ -451,7 +504,176 @@ LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
   return list;
 }
 
+HybridDrawList buildHybridDrawList(const ResultMesh& mesh, const Scene& scene, Shading shade,
+                                   double exposure, bool storedColours) {
+  const DrawList base = buildDrawList(mesh, shade, exposure, storedColours);
+  std::vector<std::vector<size_t>> bySurface(scene.surfaces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) bySurface[size_t(mesh.faceSurface[f])].push_back(f);
+  HybridDrawList list;
+  list.positions.reserve(base.positions.size());
+  list.normals.reserve(base.positions.size());
+  list.colours.reserve(base.positions.size());
+  for (size_t s = 0; s < bySurface.size(); ++s) {
+    if (bySurface[s].empty()) continue;
+    const Material& m = scene.materials.at(size_t(scene.surfaces[s].material));
+    LocalBatch b;
+    b.first = int(list.positions.size());
+    b.specular = glm::vec4(m.specular);
+    b.shininess = float(m.shininess);
+    for (size_t f : bySurface[s]) {
+      const auto& face = mesh.faces[f];
+      const glm::vec3 p0 = mesh.positions[size_t(face[0])], p1 = mesh.positions[size_t(face[1])],
+                      p2 = mesh.positions[size_t(face[2])];
+      glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0);
+      const float len = glm::length(faceNormal);
+      faceNormal = len > 0 ? faceNormal / len : glm::vec3(0, 0, 1);
+      for (int corner = 0; corner < 3; ++corner) {
+        const size_t k = 3 * f + size_t(corner);
+        list.positions.push_back(base.positions[k]);
+        list.colours.push_back(base.display[k]);
+        list.normals.push_back(shade == Shading::Smooth && !mesh.vertexNormal.empty()
+                                   ? mesh.vertexNormal[size_t(face[corner])]
+                                   : faceNormal);
+      }
+    }
+    b.count = int(list.positions.size()) - b.first;
+    list.batches.push_back(b);
+  }
+  return list;
+}
+
 }  // namespace detail
+
+Image renderHybrid(const ResultMesh& mesh, const Scene& scene, const RenderOptions& o) {
+  checkSize(o);
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode hybrid", "--backend osmesa (the hybrid model is OpenGL-only)", "--backend software");
+  if (o.radiance) throw inputError("--mode hybrid", "no --hdr (radiance is radiosity-only)", "--hdr");
+  checkFaceSurfaces(mesh, scene, "--mode hybrid");
+  if (scene.lights.empty()) throw inputError(scene.path, "a scene with lights for --mode hybrid", "none");
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
+  const bool stored = o.shade == Shading::Smooth && !o.exposure && mesh.exposure &&
+                      !mesh.vertexColour.empty();
+  detail::HybridDrawList list =
+      detail::buildHybridDrawList(mesh, scene, o.shade, effectiveExposure(mesh, o), stored);
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaHybrid(list, scene, projection, view, w, h, o.shade, o.wireframe, rgb);
+  Image image;
+  image.width = o.width;
+  image.height = o.height;
+  image.rgb = downsampleBytes(rgb, o.width, o.height, o.ssaa);
+  return image;
+}
+
+namespace {
+/// Copies a tile (top row first) into the grid at cell `cell`.
+void pasteTile(Image& grid, const Image& tile, int cell) {
+  const int x0 = (cell % kLadderColumns) * tile.width, y0 = (cell / kLadderColumns) * tile.height;
+  for (int y = 0; y < tile.height; ++y)
+    std::copy_n(&tile.rgb[size_t(y) * tile.width * 3], size_t(tile.width) * 3,
+                &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3]);
+}
+
+/// Ladder tiles drawn by the raster core: the wireframe (0) or hidden surfaces removed (1).
+Image ladderSoftwareTile(const ResultMesh& mesh, const Scene& scene, const RenderOptions& o,
+                         bool wireframe) {
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h);
+  raster::Target target(w, h, /*withItem=*/false, /*withColor=*/true);
+  target.clearColor(glm::vec4(0, 0, 0, 1));
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, mesh.positions, clip);
+  std::vector<uint32_t> indices;
+  indices.reserve(mesh.faces.size() * 3);
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) indices.push_back(uint32_t(f[size_t(k)]));
+  if (wireframe) {
+    std::vector<uint32_t> edges;
+    edges.reserve(indices.size() * 2);
+    for (size_t t = 0; t < mesh.faces.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        edges.push_back(indices[3 * t + size_t(k)]);
+        edges.push_back(indices[3 * t + size_t((k + 1) % 3)]);
+      }
+    raster::State state;
+    state.depthTest = false;
+    raster::drawLines(target, state, clip.data(), clip.size(), edges.data(), edges.size() / 2,
+                      glm::vec4(glm::vec3(224 / 255.0f), 1.0f));
+  } else {
+    // De-indexed, flat: each triangle carries its surface's colour.
+    std::vector<glm::vec4> faceClip, colours;
+    faceClip.reserve(indices.size());
+    colours.reserve(indices.size());
+    for (size_t t = 0; t < mesh.faces.size(); ++t) {
+      const int surface = mesh.faceSurface[t];
+      const Material& m = scene.materials.at(size_t(scene.surfaces[size_t(surface)].material));
+      const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
+      // Brightness varied per surface (golden-ratio sequence in [0.45, 1]) so that neighbouring
+      // surfaces of one material stay apart.
+      const double shade = 0.45 + 0.55 * (1.0 - std::fmod(surface * 0.6180339887, 1.0));
+      const glm::dvec3 linear = peak > 0 ? m.emission / peak : m.reflectance * shade;
+      const glm::vec4 colour(float(srgbEncode(linear.x)), float(srgbEncode(linear.y)),
+                             float(srgbEncode(linear.z)), 1.0f);
+      for (int k = 0; k < 3; ++k) {
+        faceClip.push_back(clip[indices[3 * t + size_t(k)]]);
+        colours.push_back(colour);
+      }
+    }
+    raster::State state;
+    state.shade = raster::Shade::Flat;
+    raster::drawTriangles(target, state, faceClip.data(), faceClip.size(), nullptr,
+                          faceClip.size() / 3, nullptr, colours.data());
+  }
+  std::vector<uint8_t> rgb(size_t(w) * h * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = toByte(target.color[p][c]);
+  Image image;
+  image.width = o.width;
+  image.height = o.height;
+  image.rgb = downsampleBytes(rgb, o.width, o.height, o.ssaa);
+  return image;
+}
+}  // namespace
+
+Image renderLadder(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options) {
+  checkSize(options);
+  if (options.backend != Backend::OsMesa)
+    throw inputError("--ladder", "--backend osmesa (the local tiles are OpenGL-only)", "--backend software");
+  if (options.radiance) throw inputError("--ladder", "no --hdr", "--hdr");
+  if (options.wireframe) throw inputError("--ladder", "no --wireframe (the ladder has its own)", "--wireframe");
+  if (int64_t(options.width) * kLadderColumns > raster::kMaxSize || options.height * 2 > raster::kMaxSize)
+    throw inputError("--ladder", "a tile size whose grid fits " + std::to_string(raster::kMaxSize) + " pixels",
+                     std::to_string(options.width) + "x" + std::to_string(options.height));
+  checkFaceSurfaces(mesh, scene, "--ladder");
+  RenderOptions o = options;
+  o.camera = effectiveCamera(mesh, options);  // one view for every tile
+  Image grid;
+  grid.width = options.width * kLadderColumns;
+  grid.height = options.height * ((kLadderTiles + kLadderColumns - 1) / kLadderColumns);
+  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 0);
+  pasteTile(grid, ladderSoftwareTile(mesh, scene, o, /*wireframe=*/true), 0);
+  pasteTile(grid, ladderSoftwareTile(mesh, scene, o, /*wireframe=*/false), 1);
+  LocalScene local = prepareLocalScene(scene);
+  RenderOptions lo = o;
+  lo.exposure.reset();
+  lo.shade = Shading::Flat;
+  pasteTile(grid, renderLocal(local, lo), 2);
+  lo.shade = Shading::Smooth;
+  pasteTile(grid, renderLocal(local, lo), 3);
+  for (Material& m : local.scene.materials)
+    if (m.specular.x == 0 && m.specular.y == 0 && m.specular.z == 0) {
+      m.specular = glm::dvec4(glm::dvec3(kLadderSpecular), 1.0);
+      m.shininess = kLadderShininess;
+    }
+  pasteTile(grid, renderLocal(local, lo), 4);
+  o.shade = Shading::Flat;
+  pasteTile(grid, render(mesh, o), 5);
+  o.shade = Shading::Smooth;
+  pasteTile(grid, render(mesh, o), 6);
+  return grid;
+}
 
 Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   checkSize(o);

@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "display/raster.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 
@@ -35,6 +36,10 @@ struct ResultMesh {
   /// The file's display colours (red, green, blue), when present: sRGB(clamp(K·B)) plus, for
   /// a solve stopped before convergence, K·ρ·ambient (DESIGN.md, "Result mesh").
   std::vector<std::array<uint8_t, 3>> vertexColour;
+  /// Vertex normals (nx, ny, nz), when present (used by --mode hybrid).
+  std::vector<glm::vec3> vertexNormal;
+  /// Each face's scene surface index (the face property `surface`), when present.
+  std::vector<int> faceSurface;
   std::optional<ViewCamera> camera;  ///< from the `camera ...` header comment
   std::optional<double> exposure;    ///< from the `exposure K` header comment
   glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
@@ -57,7 +62,7 @@ struct RenderOptions {
   Backend backend = Backend::OsMesa;
   std::optional<double> exposure;      ///< overrides the file's exposure
   std::optional<ViewCamera> camera;    ///< overrides the file's camera
-  bool wireframe = false;              ///< OpenGL backend only
+  bool wireframe = false;              ///< overlay the element edges (both backends)
   int ssaa = 1;                        ///< supersampling factor per axis, box filter in linear light
   bool radiance = false;               ///< also produce the linear radiance image (B/π)
 };
@@ -121,7 +126,51 @@ ViewCamera effectiveCamera(const LocalScene& local, const RenderOptions& options
 /// not used (InputError when set). Throws std::runtime_error when OSMesa is unavailable.
 Image renderLocal(const LocalScene& local, const RenderOptions& options);
 
+// ---- Hybrid mode (radview --mode hybrid) --------------------------------------------------------
+// Radiosity as the diffuse part plus the scene's lights' specular highlights, through OSMesa:
+// lighting on, material ambient and diffuse zero, glColorMaterial(GL_EMISSION) fed with the
+// display colours radiosity mode draws (so emission = radiosity colour), material specular and
+// shininess from the scene per surface (the face property `surface`), the scene's lights and
+// light model, GL_LIGHT_MODEL_COLOR_CONTROL = GL_SEPARATE_SPECULAR_COLOR. No fog. Normals: the
+// file's vertex normals (smooth; face normals when the file has none) or face normals (flat).
+
+/// Renders the hybrid picture. The mesh must carry face `surface` indices valid in `scene`
+/// (InputError otherwise); options.backend must be OsMesa and radiance off (InputError).
+Image renderHybrid(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options);
+
+// ---- The realism ladder (radview --ladder) ------------------------------------------------------
+// One picture of the same view (the result's camera, or options.camera) in kLadderTiles tiles of
+// options.width × options.height, kLadderColumns per row, row-major from the top left (the last
+// cell of the second row stays black):
+//   0 wireframe (every element edge of the result, light grey on black, no hidden-line removal),
+//   1 hidden surfaces removed (one constant colour per surface: sRGB of its reflectance times a
+//     per-surface brightness in [0.45, 1] (golden-ratio sequence over the surface index, so that
+//     surfaces of one material stay apart), or of its emission normalised to full brightness for
+//     emitters; depth test),
+//   2 flat local, 3 smooth local (renderLocal of the scene, meshed with its own settings),
+//   4 smooth local with specular (materials without a specular colour get kLadderSpecular and
+//     shininess kLadderShininess),
+//   5 radiosity flat (each element's own value), 6 radiosity Gouraud (as render()).
+// Tiles 0 and 1 are drawn by the raster core, the others through OSMesa. options.backend must be
+// OsMesa, wireframe and radiance off (InputError); exposure and ssaa apply as usual.
+constexpr int kLadderTiles = 7;
+constexpr int kLadderColumns = 4;
+constexpr double kLadderSpecular = 0.4;
+constexpr double kLadderShininess = 30;
+Image renderLadder(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options);
+
 namespace detail {
+/// Display byte (all three channels) of wireframe edges, in both backends.
+constexpr uint8_t kWireByte = 16;
+/// Constant part of the depth bias of software wireframe lines toward the viewer (window depth).
+constexpr float kWireDepthBias = 1e-5f;
+/// Draws the edges of every triangle (indices 3 per triangle, or null = de-indexed: triangle t
+/// is clip[3t..3t+2]) into `target` in the wireframe colour, depth-tested (LESS) with a bias
+/// toward the viewer of the triangle's largest window-depth slope per pixel plus
+/// kWireDepthBias: the mirror of glPolygonOffset(1, 1) on the fill pass of the OpenGL path.
+void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>& clip,
+                           const std::vector<uint32_t>* triangles);
+
 /// The local model's geometry, de-indexed (3 vertices per triangle), grouped by surface.
 struct LocalBatch {
   int first = 0, count = 0;  ///< vertex range
@@ -133,6 +182,19 @@ struct LocalDrawList {
   std::vector<LocalBatch> batches;
 };
 LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade);
+/// The hybrid model's geometry: de-indexed, grouped by surface (batches carry only the
+/// specular colour and shininess), with the display colour per vertex.
+struct HybridDrawList {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec4> colours;
+  std::vector<LocalBatch> batches;
+};
+HybridDrawList buildHybridDrawList(const ResultMesh& mesh, const Scene& scene, Shading shade,
+                                   double exposure, bool storedColours);
+/// Radiosity emission plus fixed-function specular through OSMesa: bytes (RGB, BOTTOM row first).
+void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
+                        const glm::mat4& view, int width, int height, Shading shade,
+                        bool wireframe, std::vector<uint8_t>& rgb);
 /// Fixed-function lighting through OSMesa: bytes (RGB, BOTTOM row first).
 void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
                        const glm::mat4& view, int width, int height, Shading shade, bool wireframe,

@@ -882,3 +882,110 @@ TEST(Raster, NearPlaneCutNearTheEyeStaysConvex) {
   EXPECT_GT(expected, 400);
   EXPECT_LE(mismatched, 4) << "of " << expected << " pixels";
 }
+
+// ---- Lines (raster::drawLines) ----------------------------------------------------------------
+
+namespace {
+
+// Draws one segment between window points (x0, y0, z0) and (x1, y1, z1) (NDC depth z) with the
+// hits hook on and no depth test; returns the hit counts.
+std::vector<uint32_t> lineHits(int w, int h, glm::dvec3 a, glm::dvec3 b) {
+  Target t = makeTarget(w, h, true);
+  const glm::vec4 clip[2] = {windowToClip(a.x, a.y, a.z, w, h, 2.0f),
+                             windowToClip(b.x, b.y, b.z, w, h, 0.5f)};
+  raster::drawLines(t, countingState(), clip, 2, nullptr, 1, glm::vec4(1.0f));
+  return t.hits;
+}
+
+TEST(RasterLines, OnePixelPerColumnOnPixelCentres) {
+  constexpr int W = 16, H = 8;
+  // x-major: columns whose centre lies in [1.2, 9.8) -> 1..9, row floor(3.7) = 3.
+  std::vector<uint32_t> hits = lineHits(W, H, {1.2, 3.7, 0}, {9.8, 3.7, 0});
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      EXPECT_EQ(hits[size_t(y) * W + x], (y == 3 && x >= 1 && x <= 9) ? 1u : 0u) << x << "," << y;
+  // A diagonal slope: one pixel per column, row = floor of the line's y at the column centre.
+  hits = lineHits(W, H, {0.0, 0.0, 0}, {16.0, 8.0, 0});
+  for (int x = 0; x < W; ++x) {
+    const int y = int(std::floor((x + 0.5) * 0.5));
+    int inColumn = 0;
+    for (int j = 0; j < H; ++j) inColumn += int(hits[size_t(j) * W + x]);
+    EXPECT_EQ(inColumn, 1) << x;
+    EXPECT_EQ(hits[size_t(y) * W + x], 1u) << x;
+  }
+}
+
+TEST(RasterLines, DirectionDoesNotMatter) {
+  constexpr int W = 24, H = 24;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-4.0, 28.0);
+  for (int i = 0; i < 200; ++i) {
+    const glm::dvec3 a(u(rng), u(rng), 0.1), b(u(rng), u(rng), -0.3);
+    const std::vector<uint32_t> ab = lineHits(W, H, a, b), ba = lineHits(W, H, b, a);
+    ASSERT_EQ(ab, ba) << i;
+    // Steep lines: at most one pixel per row.
+    if (std::abs(b.y - a.y) > std::abs(b.x - a.x))
+      for (int y = 0; y < H; ++y) {
+        int inRow = 0;
+        for (int x = 0; x < W; ++x) inRow += int(ab[size_t(y) * W + x]);
+        ASSERT_LE(inRow, 1) << i;
+      }
+  }
+}
+
+TEST(RasterLines, ViewportAndNearPlaneClipping) {
+  constexpr int W = 10, H = 10;
+  // Far beyond the viewport on both sides: exactly the W columns of row 5.
+  std::vector<uint32_t> hits = lineHits(W, H, {-1000.0, 5.5, 0}, {1000.0, 5.5, 0});
+  for (int x = 0; x < W; ++x) EXPECT_EQ(hits[size_t(5) * W + x], 1u);
+  uint32_t total = 0;
+  for (uint32_t h : hits) total += h;
+  EXPECT_EQ(total, uint32_t(W));
+  // Crossing the near plane (z = -w): only the part in front is drawn. With w = 1 and x going
+  // -1 .. 1 while z goes -3 .. 1, the near plane is met at x = 0 (window x = 5).
+  Target t = makeTarget(W, H, true);
+  const glm::vec4 seg[2] = {{-1, 0.1f, -3, 1}, {1, 0.1f, 1, 1}};
+  raster::drawLines(t, countingState(), seg, 2, nullptr, 1, glm::vec4(1.0f));
+  for (int x = 0; x < W; ++x) EXPECT_EQ(t.hits[size_t(5) * W + x], x >= 5 ? 1u : 0u) << x;
+  // Entirely behind the eye (w < 0) or in front of the near plane: nothing.
+  t.clear();
+  const glm::vec4 behind[2] = {{-1, 0, 2, -1}, {1, 0, 2, -1}};
+  raster::drawLines(t, countingState(), behind, 2, nullptr, 1, glm::vec4(1.0f));
+  for (uint32_t h : t.hits) EXPECT_EQ(h, 0u);
+  // Bad indices.
+  const uint32_t bad[2] = {0, 2};
+  EXPECT_THROW(raster::drawLines(t, countingState(), seg, 2, bad, 1, glm::vec4(1.0f)), std::out_of_range);
+}
+
+TEST(RasterLines, DepthTestWithBiasTowardTheViewer) {
+  constexpr int W = 16, H = 16;
+  // A full-screen triangle at NDC depth 0 (window depth 0.5), a line on it and one behind it.
+  Mesh m;
+  m.clip = {{-1, -1, 0, 1}, {3, -1, 0, 1}, {-1, 3, 0, 1}};
+  m.idx = {0, 1, 2};
+  const glm::vec4 red(1, 0, 0, 1), green(0, 1, 0, 1);
+  m.colors = {red, red, red};
+  auto run = [&](float z, float bias, raster::DepthFunc func) {
+    Target t(W, H, false, true);
+    State s;
+    s.shade = Shade::Flat;
+    s.depthFunc = func;
+    if (func == raster::DepthFunc::Greater) t.clearDepth(0.0f);
+    raster::drawTriangles(t, s, m.clip.data(), 3, m.idx.data(), 1, nullptr, m.colors.data());
+    const glm::vec4 seg[2] = {{-1, 0.05f, z, 1}, {1, 0.05f, z, 1}};
+    raster::drawLines(t, s, seg, 2, nullptr, 1, green, bias);
+    int shown = 0;
+    for (int x = 0; x < W; ++x) shown += t.color[t.index(x, 8)] == green;
+    return std::make_pair(shown, t.depth[t.index(3, 8)]);
+  };
+  using raster::DepthFunc;
+  EXPECT_EQ(run(0.0f, 0.0f, DepthFunc::Less).first, 0);         // equal depth fails LESS
+  auto biased = run(0.0f, 1e-4f, DepthFunc::Less);
+  EXPECT_EQ(biased.first, W);                                    // the bias lifts it
+  EXPECT_FLOAT_EQ(biased.second, 0.5f - 1e-4f);                  // and its depth is written
+  EXPECT_EQ(run(0.01f, 1e-4f, DepthFunc::Less).first, 0);       // behind by more than the bias
+  EXPECT_EQ(run(0.0f, 1e-4f, DepthFunc::Greater).first, W);     // reversed: bias is added
+  EXPECT_EQ(run(-0.01f, 1e-4f, DepthFunc::Greater).first, 0);
+}
+
+}  // namespace

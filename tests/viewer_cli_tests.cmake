@@ -56,6 +56,9 @@ viewer_cli_test(hdr 0 "wrote" OUT/hdr.hdr
 viewer_cli_test(wireframe_ssaa_camera 0 "wrote" OUT/wire.png
                 ${VIEWER_INPUT} -o OUT/wire.png --wireframe --ssaa 2 --exposure 2
                 --camera eye=278,273,-600,fov=50 --width 128 --height 128)
+viewer_cli_test(software_wireframe 0 "wrote" OUT/software_wire.png
+                ${VIEWER_INPUT} -o OUT/software_wire.png --backend software --wireframe
+                --width 128 --height 96)
 viewer_cli_test(help 0 "" "" --help)
 
 # Bad input: exit 1, "radview: error: <where>: expected <what>, found <what>", no output.
@@ -78,8 +81,6 @@ viewer_cli_test(usage.unknown_flag 2 "--frobnicate" OUT/usage1.png
 viewer_cli_test(usage.missing_output 2 "output" "" ${VIEWER_INPUT})
 viewer_cli_test(usage.missing_value 2 "width" OUT/usage2.png ${VIEWER_INPUT} -o OUT/usage2.png --width)
 viewer_cli_test(usage.bad_shade 2 "shade" OUT/usage3.png ${VIEWER_INPUT} -o OUT/usage3.png --shade phong)
-viewer_cli_test(usage.software_wireframe 2 "--wireframe.*OpenGL-only" OUT/usage4.png
-                ${VIEWER_INPUT} -o OUT/usage4.png --backend software --wireframe)
 
 # Local-illumination mode (--mode local --scene SCENE.json): OpenGL lighting through OSMesa.
 set(VIEWER_CORNELL_SCENE ${PROJECT_SOURCE_DIR}/scenes/cornell.json)
@@ -105,3 +106,25 @@ viewer_cli_test(usage.local_hdr 2 "--hdr.*radiosity-only" OUT/usage8.png
 viewer_cli_test(usage.radiosity_without_result 2 "RESULT.ply is required" OUT/usage9.png -o OUT/usage9.png)
 viewer_cli_test(usage.radiosity_with_scene 2 "--scene.*belongs to --mode local" OUT/usage10.png
                 ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} -o OUT/usage10.png)
+
+# Hybrid mode (--mode hybrid RESULT.ply --scene SCENE.json): radiosity plus specular, OSMesa.
+viewer_cli_test(hybrid 0 "hybrid.*wrote" OUT/hybrid.png
+                --mode hybrid ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} -o OUT/hybrid.png
+                --width 96 --height 96 --shade flat --wireframe)
+viewer_cli_test(usage.hybrid_without_scene 2 "--scene.*required with --mode hybrid" OUT/usage11.png
+                --mode hybrid ${VIEWER_INPUT} -o OUT/usage11.png)
+viewer_cli_test(usage.hybrid_software 2 "--mode hybrid is OpenGL-only" OUT/usage12.png
+                --mode hybrid ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} --backend software
+                -o OUT/usage12.png)
+viewer_cli_test(bad.hybrid_no_surface 1
+                "radview: error: .*mesh_only.ply: expected a radiosity result" OUT/hybrid_bad.png
+                --mode hybrid ${VIEWER_MESH_ONLY} --scene ${VIEWER_CORNELL_SCENE} -o OUT/hybrid_bad.png)
+
+# The realism ladder (--ladder RESULT.ply --scene SCENE.json): one 4x2 grid of tiles.
+viewer_cli_test(ladder 0 "rendered 256x128 \\(ladder.*wrote" OUT/ladder.png
+                ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} --ladder -o OUT/ladder.png
+                --width 64 --height 64)
+viewer_cli_test(usage.ladder_without_scene 2 "--scene.*required with --ladder" OUT/usage13.png
+                ${VIEWER_INPUT} --ladder -o OUT/usage13.png)
+viewer_cli_test(usage.ladder_wireframe 2 "--wireframe.*not with --ladder" OUT/usage14.png
+                ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} --ladder --wireframe -o OUT/usage14.png)

@@ -257,21 +257,167 @@ TEST_F(ViewerTest, WritesPngAndHdrAtomically) {
   EXPECT_THROW(writePng(std::string(RAD_VIEWER_OUT) + "/no_such_folder/x.png", image), InputError);
 }
 
-TEST_F(ViewerTest, WireframeIsOpenGlOnly) {
-  RenderOptions o = options(Backend::Software, Shading::Smooth, 64);
-  o.wireframe = true;
-  EXPECT_THROW(render(mesh(), o), InputError);
-  o.backend = Backend::OsMesa;
-  Image wire = render(mesh(), o);
-  o.wireframe = false;
-  Image plain = render(mesh(), o);
-  // Edges darken the picture.
-  double sumWire = 0, sumPlain = 0;
-  for (size_t i = 0; i < wire.rgb.size(); ++i) {
-    sumWire += wire.rgb[i];
-    sumPlain += plain.rgb[i];
+TEST_F(ViewerTest, WireframeDarkensThePicture) {
+  for (Backend backend : {Backend::OsMesa, Backend::Software}) {
+    RenderOptions o = options(backend, Shading::Smooth, 64);
+    o.wireframe = true;
+    Image wire = render(mesh(), o);
+    o.wireframe = false;
+    Image plain = render(mesh(), o);
+    // Edges darken the picture.
+    double sumWire = 0, sumPlain = 0;
+    for (size_t i = 0; i < wire.rgb.size(); ++i) {
+      sumWire += wire.rgb[i];
+      sumPlain += plain.rgb[i];
+    }
+    EXPECT_LT(sumWire, 0.95 * sumPlain) << (backend == Backend::OsMesa ? "osmesa" : "software");
   }
-  EXPECT_LT(sumWire, 0.95 * sumPlain);
+}
+
+TEST_F(ViewerTest, WireframeBackendsAgree) {
+  for (int size : {128, 256}) {
+    RenderOptions o = options(Backend::OsMesa, Shading::Smooth, size);
+    o.wireframe = true;
+    Image gl = render(mesh(), o);
+    o.backend = Backend::Software;
+    Image sw = render(mesh(), o);
+    Agreement a = compare(gl, sw);
+    // Share of pixels of the wireframe colour in each picture (how much is line).
+    size_t linesGl = 0, linesSw = 0;
+    for (size_t p = 0; p < gl.rgb.size() / 3; ++p) {
+      linesGl += gl.rgb[p * 3] == detail::kWireByte && gl.rgb[p * 3 + 1] == detail::kWireByte;
+      linesSw += sw.rgb[p * 3] == detail::kWireByte && sw.rgb[p * 3 + 1] == detail::kWireByte;
+    }
+    std::printf("[ viewer   ] wireframe %dx%d: %.3f%% of pixels > 4/255, mean |difference| %.3f/255; "
+                "line pixels %.2f%% (osmesa) %.2f%% (software)\n",
+                size, size, 100 * a.shareOver4, a.meanAbs, 100.0 * linesGl / (gl.rgb.size() / 3),
+                100.0 * linesSw / (sw.rgb.size() / 3));
+    EXPECT_LE(a.shareOver4, 0.01) << size;  // measured: 0.44 % at 128, 0.24 % at 256
+  }
+}
+
+// ---- Hybrid: radiosity diffuse plus fixed-function specular ----------------------------------
+
+Scene cornellScene() { return loadScene(std::string(RAD_SCENES) + "/cornell.json"); }
+
+int materialIndexOf(const Scene& scene, const std::string& name) {
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (scene.materials[i].name == name) return int(i);
+  ADD_FAILURE() << "no material " << name;
+  return 0;
+}
+
+TEST_F(ViewerTest, HybridWithoutSpecularIsTheRadiosityPicture) {
+  ASSERT_EQ(mesh().faceSurface.size(), mesh().faces.size());
+  ASSERT_EQ(mesh().vertexNormal.size(), mesh().positions.size());
+  const Scene scene = cornellScene();  // no material has a specular colour
+  for (Shading shade : {Shading::Smooth, Shading::Flat}) {
+    const RenderOptions o = options(Backend::OsMesa, shade, 128);
+    Agreement a = compare(renderHybrid(mesh(), scene, o), render(mesh(), o));
+    EXPECT_LE(a.maxDiff, 1) << (shade == Shading::Smooth ? "smooth" : "flat");
+  }
+}
+
+TEST_F(ViewerTest, HybridAddsAHighlightWhereTheMaterialIsSpecular) {
+  Scene shiny = cornellScene();
+  Material& white = shiny.materials[size_t(materialIndexOf(shiny, "white"))];
+  white.specular = glm::dvec4(1, 1, 1, 1);
+  white.shininess = 30;
+  const RenderOptions o = options(Backend::OsMesa, Shading::Smooth, 128);
+  const Image plain = render(mesh(), o), hybrid = renderHybrid(mesh(), shiny, o);
+  // Where the highlight should be: on the back wall behind the light (infinite viewer).
+  const glm::mat4 mvp = viewProjection(mesh(), effectiveCamera(mesh(), o), o.width, o.height);
+  const glm::vec4 c = mvp * glm::vec4(278, 530, 559.2f, 1);
+  const int hx = int(std::floor((c.x / c.w * 0.5 + 0.5) * o.width));
+  const int hy = o.height - 1 - int(std::floor((c.y / c.w * 0.5 + 0.5) * o.height));
+  int darker = 0, peak = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const size_t p = (size_t(y) * o.width + x) * 3;
+      int gain = 0;
+      for (int k = 0; k < 3; ++k) {
+        const int d = int(hybrid.rgb[p + k]) - int(plain.rgb[p + k]);
+        darker += d < -1;
+        gain += d;
+      }
+      if (std::abs(x - hx) <= 3 && std::abs(y - hy) <= 3) peak = std::max(peak, gain);
+    }
+  std::printf("[ viewer   ] hybrid highlight: +%d (sum of channels) near the back wall behind the light\n", peak);
+  EXPECT_EQ(darker, 0) << "the specular term only adds";
+  EXPECT_GT(peak, 60) << "no highlight on the back wall behind the light";
+}
+
+TEST_F(ViewerTest, HybridRefusesWhatItCannotDraw) {
+  const Scene scene = cornellScene();
+  RenderOptions o = options(Backend::Software, Shading::Smooth, 16);
+  EXPECT_THROW(renderHybrid(mesh(), scene, o), InputError);
+  o = options(Backend::OsMesa, Shading::Smooth, 16);
+  o.radiance = true;
+  EXPECT_THROW(renderHybrid(mesh(), scene, o), InputError);
+  o.radiance = false;
+  ResultMesh noSurfaces = mesh();
+  noSurfaces.faceSurface.clear();
+  EXPECT_THROW(renderHybrid(noSurfaces, scene, o), InputError);
+  Scene fewer = scene;
+  fewer.surfaces.resize(2);
+  EXPECT_THROW(renderHybrid(mesh(), fewer, o), InputError);
+  Scene dark = scene;
+  dark.lights.clear();
+  EXPECT_THROW(renderHybrid(mesh(), dark, o), InputError);
+}
+
+// ---- The realism ladder -------------------------------------------------------------------------
+
+TEST_F(ViewerTest, LadderIsAGridOfDistinctTiles) {
+  const Scene scene = cornellScene();
+  RenderOptions o = options(Backend::OsMesa, Shading::Smooth, 0);
+  o.width = 64;
+  o.height = 48;
+  const Image grid = renderLadder(mesh(), scene, o);
+  ASSERT_EQ(grid.width, 64 * kLadderColumns);
+  ASSERT_EQ(grid.height, 48 * 2);
+  ASSERT_EQ(grid.rgb.size(), size_t(grid.width) * grid.height * 3);
+  auto tile = [&](int cell) {
+    Image t;
+    t.width = o.width;
+    t.height = o.height;
+    const int x0 = (cell % kLadderColumns) * o.width, y0 = (cell / kLadderColumns) * o.height;
+    for (int y = 0; y < o.height; ++y)
+      t.rgb.insert(t.rgb.end(), &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3],
+                   &grid.rgb[(size_t(y0 + y) * grid.width + x0 + o.width) * 3]);
+    return t;
+  };
+  std::vector<Image> tiles;
+  for (int i = 0; i < kLadderTiles; ++i) tiles.push_back(tile(i));
+  for (int i = 0; i < kLadderTiles; ++i) {
+    double mean = 0;
+    for (uint8_t b : tiles[size_t(i)].rgb) mean += b;
+    EXPECT_GT(mean / tiles[size_t(i)].rgb.size(), 10.0) << "tile " << i << " is (nearly) black";
+    for (int j = i + 1; j < kLadderTiles; ++j) {
+      const Agreement a = compare(tiles[size_t(i)], tiles[size_t(j)]);
+      EXPECT_GT(a.shareOver4, 0.01) << "tiles " << i << " and " << j << " are (nearly) the same";
+    }
+  }
+  // The empty cell stays black; the radiosity tiles are the plain renders.
+  const Image empty = tile(kLadderTiles);
+  EXPECT_TRUE(std::all_of(empty.rgb.begin(), empty.rgb.end(), [](uint8_t b) { return b == 0; }));
+  RenderOptions flat = o;
+  flat.shade = Shading::Flat;
+  EXPECT_EQ(compare(tiles[5], render(mesh(), flat)).maxDiff, 0);
+  EXPECT_EQ(compare(tiles[6], render(mesh(), o)).maxDiff, 0);
+}
+
+TEST_F(ViewerTest, LadderRefusesWhatItCannotDraw) {
+  const Scene scene = cornellScene();
+  RenderOptions o = options(Backend::Software, Shading::Smooth, 16);
+  EXPECT_THROW(renderLadder(mesh(), scene, o), InputError);
+  o = options(Backend::OsMesa, Shading::Smooth, 16);
+  o.wireframe = true;
+  EXPECT_THROW(renderLadder(mesh(), scene, o), InputError);
+  o.wireframe = false;
+  ResultMesh noSurfaces = mesh();
+  noSurfaces.faceSurface.clear();
+  EXPECT_THROW(renderLadder(noSurfaces, scene, o), InputError);
 }
 
 TEST(ViewerInput, MissingRadiosityPropertiesAreNamed) {
