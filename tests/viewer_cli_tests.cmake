@@ -128,3 +128,7 @@ viewer_cli_test(usage.ladder_without_scene 2 "--scene.*required with --ladder" O
                 ${VIEWER_INPUT} --ladder -o OUT/usage13.png)
 viewer_cli_test(usage.ladder_wireframe 2 "--wireframe.*not with --ladder" OUT/usage14.png
                 ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} --ladder --wireframe -o OUT/usage14.png)
+
+# An output path nobody can write (a file under /proc): exit 1, nothing left behind.
+viewer_cli_test(bad.unwritable_output 1 "radview: error: " ""
+                ${VIEWER_INPUT} -o /proc/radview_cannot_write_here.png)

@@ -180,6 +180,50 @@ TEST_F(ViewerTest, PictureShowsRedAndGreenWallsAndTheLight) {
   }
 }
 
+/// Distance in the floor plane from (x, z) to a block's footprint (0 inside).
+double footprintDistance(glm::dvec2 p, const std::vector<glm::dvec2>& quad) {
+  bool inside = true;
+  double best = HUGE_VAL;
+  for (size_t k = 0; k < quad.size(); ++k) {
+    glm::dvec2 a = quad[k], b = quad[(k + 1) % quad.size()], d = b - a;
+    double cross = d.x * (p.y - a.y) - d.y * (p.x - a.x);
+    inside = inside && cross <= 0;  // both footprints are listed clockwise seen from above (+y)
+    double t = std::clamp(glm::dot(p - a, d) / glm::dot(d, d), 0.0, 1.0);
+    best = std::min(best, glm::length(a + t * d - p));
+  }
+  return inside ? 0.0 : best;
+}
+
+// The floor around the blocks' bases (occluded and in their shadow) is darker than the open floor.
+TEST_F(ViewerTest, FloorAroundTheBlocksIsDarkerThanTheOpenFloor) {
+  const ResultMesh& m = mesh();
+  const std::vector<glm::dvec2> shortBlock = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
+  const std::vector<glm::dvec2> tallBlock = {{423, 247}, {265, 296}, {314, 456}, {472, 406}};
+  auto nearest = [&](const std::array<int, 3>& f) {
+    glm::vec3 c = (m.positions[f[0]] + m.positions[f[1]] + m.positions[f[2]]) / 3.0f;
+    glm::dvec2 p(c.x, c.z);
+    return std::min(footprintDistance(p, shortBlock), footprintDistance(p, tallBlock));
+  };
+  auto onFloor = [&](const std::array<int, 3>& f) {
+    return m.positions[f[0]].y < 0.5f && m.positions[f[1]].y < 0.5f && m.positions[f[2]].y < 0.5f;
+  };
+  auto aroundBases = [&](const std::array<int, 3>& f) {
+    double d = nearest(f);
+    return onFloor(f) && d > 0 && d < 40;
+  };
+  auto openFloor = [&](const std::array<int, 3>& f) { return onFloor(f) && nearest(f) > 120; };
+  for (Backend backend : {Backend::OsMesa, Backend::Software}) {
+    RenderOptions o = options(backend, Shading::Smooth);
+    Image image = render(m, o);
+    std::vector<uint32_t> ids = renderFaceIds(m, o);
+    auto [around, nAround] = regionMean(m, image, ids, aroundBases);
+    auto [open, nOpen] = regionMean(m, image, ids, openFloor);
+    ASSERT_GT(nAround, 100u);
+    ASSERT_GT(nOpen, 100u);
+    EXPECT_LT(luminance(around) + 10, luminance(open));
+  }
+}
+
 TEST_F(ViewerTest, FlatShadingShowsEachElementsOwnValue) {
   const ResultMesh& m = mesh();
   const double k = *m.exposure;
