@@ -61,14 +61,20 @@ void finish() {
 
 void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
               const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-              GLenum type, void* buffer) {
+              GLenum type, void* buffer, bool cullBack) {
   Context ctx = makeCurrent(width, height, type, buffer);
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glDisable(GL_LIGHTING);
-  glDisable(GL_CULL_FACE);
+  if (cullBack) {
+    glFrontFace(GL_CCW);
+    glCullFace(GL_BACK);
+    glEnable(GL_CULL_FACE);  // also culls the GL_LINE pass of the wireframe
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
   glDisable(GL_DITHER);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -280,12 +286,12 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
 
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view, int width,
                   int height, Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
-                  std::vector<float>* radiance) {
+                  std::vector<float>* radiance, bool cullBack) {
   const size_t pixels = size_t(width) * height;
   {
     std::vector<GLubyte> buffer(pixels * 4);
     drawPass(list, list.display, projection, view, width, height, shade, wireframe, GL_UNSIGNED_BYTE,
-             buffer.data());
+             buffer.data(), cullBack);
     rgb.resize(pixels * 3);
     for (size_t p = 0; p < pixels; ++p)
       for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
@@ -301,7 +307,7 @@ void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::
     scaled[i] = glm::vec4(glm::min(glm::vec3(list.radiance[i]) * scale, glm::vec3(1.0f)), 1.0f);
   std::vector<GLfloat> buffer(pixels * 4);
   drawPass(list, scaled, projection, view, width, height, shade, /*wireframe=*/false, GL_FLOAT,
-           buffer.data());
+           buffer.data(), cullBack);
   radiance->resize(pixels * 3);
   for (size_t p = 0; p < pixels; ++p)
     for (int c = 0; c < 3; ++c) (*radiance)[p * 3 + c] = buffer[p * 4 + c] / scale;

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
       "--mode hybrid draws RESULT.ply's radiosity as the diffuse part plus the specular highlights "
       "of --scene SCENE.json's lights and materials (OSMesa only)."};
   std::string input, output, hdr, shade = "smooth", backend = "osmesa", camera, mode = "radiosity",
-      scenePath;
+      scenePath, cull = "none";
   RenderOptions o;
   double exposure = 0;
   app.add_option("result", input, "Result PLY written by `radiosity solve` (--mode radiosity)");
@@ -49,6 +49,12 @@ int main(int argc, char** argv) {
   auto* exposureOption =
       app.add_option("--exposure", exposure, "Exposure K (default: the file's `exposure` comment)")
           ->check(CLI::PositiveNumber);
+  auto* cullOption =
+      app.add_option("--cull", cull,
+                     "none: draw every face (default); back: remove back faces, clockwise on "
+                     "screen (GL_CULL_FACE with GL_BACK, CCW front faces; both backends; radiosity "
+                     "mode only)")
+          ->check(CLI::IsMember({"none", "back"}));
   app.add_flag("--wireframe", o.wireframe, "Overlay the element edges in a dark colour (both backends)");
   app.add_option("--camera", camera,
                  "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F as gluLookAt/gluPerspective, fov vertical "
@@ -64,6 +70,8 @@ int main(int argc, char** argv) {
   app.add_option("--hdr", hdr, "Also write the linear radiance B/pi as Radiance HDR (.hdr)");
   try {
     app.parse(argc, argv);
+    if (*cullOption && (ladder || mode != "radiosity"))
+      throw CLI::ValidationError("--cull", "is radiosity-only, not for --mode local, --mode hybrid or --ladder");
     if (ladder) {
       if (mode != "radiosity") throw CLI::ValidationError("--ladder", "draws every mode itself: no --mode");
       if (input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required with --ladder");
@@ -101,6 +109,7 @@ int main(int argc, char** argv) {
   o.backend = backend == "software" ? Backend::Software : Backend::OsMesa;
   if (*exposureOption) o.exposure = exposure;
   o.radiance = !hdr.empty();
+  o.cullBack = cull == "back";
   try {
     rad::checkOutputPath(output);
     if (!hdr.empty()) rad::checkOutputPath(hdr);

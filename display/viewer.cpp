@@ -119,15 +119,25 @@ std::vector<float> downsampleFloats(const std::vector<float>& big, int width, in
 /// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.
 void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int width, int height,
                     Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
-                    std::vector<float>* radiance) {
+                    std::vector<float>* radiance, bool cullBack) {
   raster::Target target(width, height, /*withItem=*/false, /*withColor=*/true);
   raster::State state;
   state.shade = shade == Shading::Flat ? raster::Shade::Flat : raster::Shade::Smooth;
+  if (cullBack) state.cull = raster::Cull::Back;
   std::vector<glm::vec4> clip;
   raster::transform(mvp, list.positions, clip);
   const size_t n = list.positions.size();
   raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.display.data());
-  if (wireframe) detail::drawSoftwareWireframe(target, clip, nullptr);
+  if (wireframe && cullBack) {
+    // As OpenGL culls before GL_LINE rasterisation: only the front faces' edges.
+    std::vector<uint32_t> front;
+    for (uint32_t t = 0; 3 * size_t(t) + 2 < n; ++t)
+      if (detail::frontFacing(clip[3 * t], clip[3 * t + 1], clip[3 * t + 2]))
+        front.insert(front.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+    detail::drawSoftwareWireframe(target, clip, &front);
+  } else if (wireframe) {
+    detail::drawSoftwareWireframe(target, clip, nullptr);
+  }
   rgb.resize(size_t(width) * height * 3);
   for (size_t p = 0; p < target.color.size(); ++p)
     for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = toByte(target.color[p][c]);
@@ -324,6 +334,11 @@ glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& c, int width,
 
 namespace detail {
 
+bool frontFacing(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c) {
+  const glm::dvec3 p(a.x, a.y, a.w), q(b.x, b.y, b.w), r(c.x, c.y, c.w);
+  return glm::dot(p, glm::cross(q, r)) > 0;
+}
+
 void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>& clip,
                            const std::vector<uint32_t>* triangles) {
   const size_t triangleCount = triangles ? triangles->size() / 3 : clip.size() / 3;
@@ -338,7 +353,7 @@ void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>&
     // vertices are in front of the eye) plus kWireDepthBias, as glPolygonOffset(1, 1) pushes the
     // fill back in OpenGL.
     double slope = 0;
-    glm::dvec3 w[3];
+    glm::dvec3 w[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
     bool inFront = true;
     for (int k = 0; k < 3; ++k) {
       const glm::dvec4 c(clip[v[k]]);
@@ -430,10 +445,11 @@ Image render(const ResultMesh& mesh, const RenderOptions& o) {
   std::vector<uint8_t> rgb;
   std::vector<float> radiance;
   if (o.backend == Backend::Software)
-    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr);
+    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr,
+                   o.cullBack);
   else
     detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
-                         o.radiance ? &radiance : nullptr);
+                         o.radiance ? &radiance : nullptr, o.cullBack);
   Image image;
   image.width = o.width;
   image.height = o.height;
@@ -701,6 +717,7 @@ std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions&
   std::vector<glm::vec4> clip;
   raster::transform(mvp, mesh.positions, clip);
   raster::State state;
+  if (o.cullBack) state.cull = raster::Cull::Back;
   static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
   raster::drawTriangles(target, state, clip.data(), clip.size(),
                         reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());

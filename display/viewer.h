@@ -65,6 +65,10 @@ struct RenderOptions {
   bool wireframe = false;              ///< overlay the element edges (both backends)
   int ssaa = 1;                        ///< supersampling factor per axis, box filter in linear light
   bool radiance = false;               ///< also produce the linear radiance image (B/π)
+  /// Radiosity mode (render, renderFaceIds): remove back faces, those clockwise in window
+  /// coordinates (OpenGL: glEnable(GL_CULL_FACE), glCullFace(GL_BACK), glFrontFace(GL_CCW);
+  /// raster core: State::cull = Cull::Back). Wireframe edges of culled triangles are not drawn.
+  bool cullBack = false;
 };
 
 /// A rendered picture, TOP row first (as image files store it).
@@ -214,7 +218,11 @@ DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure,
 /// radiance != nullptr, linear radiance (RGB floats, bottom row first).
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view,
                   int width, int height, Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
-                  std::vector<float>* radiance);
+                  std::vector<float>* radiance, bool cullBack = false);
+/// Whether the triangle (clip-space vertices) is front-facing, counter-clockwise in window
+/// coordinates: the sign of det(x, y, w) of its vertices, valid for any w (also for triangles
+/// crossing the eye plane, whose clipped parts keep that orientation).
+bool frontFacing(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c);
 }  // namespace detail
 
 }  // namespace rad::viewer

@@ -129,6 +129,18 @@ viewer_cli_test(usage.ladder_without_scene 2 "--scene.*required with --ladder" O
 viewer_cli_test(usage.ladder_wireframe 2 "--wireframe.*not with --ladder" OUT/usage14.png
                 ${VIEWER_INPUT} --scene ${VIEWER_CORNELL_SCENE} --ladder --wireframe -o OUT/usage14.png)
 
+# Back-face culling (--cull back, radiosity mode only): behind the box, the inside shows.
+viewer_cli_test(cull_back 0 "wrote" OUT/cull.png
+                ${VIEWER_INPUT} -o OUT/cull.png --cull back --camera eye=278,273,1200
+                --width 96 --height 96)
+viewer_cli_test(cull_back_software_wire 0 "wrote" OUT/cull_sw.png
+                ${VIEWER_INPUT} -o OUT/cull_sw.png --cull back --backend software --wireframe
+                --camera eye=278,273,1200 --width 96 --height 96)
+viewer_cli_test(usage.bad_cull 2 "--cull" OUT/usage15.png
+                ${VIEWER_INPUT} -o OUT/usage15.png --cull front)
+viewer_cli_test(usage.cull_local 2 "--cull.*radiosity-only" OUT/usage16.png
+                --mode local --scene ${VIEWER_CORNELL_SCENE} --cull back -o OUT/usage16.png)
+
 # An output path nobody can write (a file under /proc): exit 1, nothing left behind.
 viewer_cli_test(bad.unwritable_output 1 "radview: error: " ""
                 ${VIEWER_INPUT} -o /proc/radview_cannot_write_here.png)

@@ -464,6 +464,67 @@ TEST_F(ViewerTest, LadderRefusesWhatItCannotDraw) {
   EXPECT_THROW(renderLadder(noSurfaces, scene, o), InputError);
 }
 
+// ---- Back-face culling (--cull back) -----------------------------------------------------------
+
+/// Behind the box, looking at the outside of its back wall.
+ViewCamera behindTheBox() { return ViewCamera{{278, 273, 1200}, {278, 273, 0}, {0, 1, 0}, 39.3}; }
+
+bool onBackWall(const ResultMesh& mesh, uint32_t face) {
+  for (int v : mesh.faces[face])
+    if (std::abs(mesh.positions[size_t(v)].z - 559.2f) > 0.5f) return false;
+  return true;
+}
+
+TEST_F(ViewerTest, CullingChangesNothingFromInsideTheBox) {
+  // From the file's camera every visible face is a front face (counter-clockwise on screen).
+  for (Backend backend : {Backend::OsMesa, Backend::Software}) {
+    RenderOptions o = options(backend, Shading::Smooth, 128);
+    Image all = render(mesh(), o);
+    o.cullBack = true;
+    Agreement a = compare(all, render(mesh(), o));
+    EXPECT_LT(a.shareAny, 0.002) << (backend == Backend::OsMesa ? "osmesa" : "software");
+  }
+}
+
+TEST_F(ViewerTest, CullingRemovesTheOutsideOfTheBackWall) {
+  RenderOptions o = options(Backend::Software, Shading::Smooth, 128);
+  o.camera = behindTheBox();
+  const size_t centre = size_t(64) * 128 + 64;
+  std::vector<uint32_t> all = renderFaceIds(mesh(), o);
+  ASSERT_NE(all[centre], raster::kNoItem);
+  EXPECT_TRUE(onBackWall(mesh(), all[centre])) << "without culling the back wall hides the inside";
+  o.cullBack = true;
+  std::vector<uint32_t> culled = renderFaceIds(mesh(), o);
+  size_t backWall = 0, seen = 0;
+  for (uint32_t id : culled) {
+    if (id == raster::kNoItem) continue;
+    ++seen;
+    backWall += onBackWall(mesh(), id);
+  }
+  EXPECT_EQ(backWall, 0u) << "the back wall's outside is drawn with culling";
+  EXPECT_GT(seen, culled.size() / 4) << "the inside of the box is seen through the back wall";
+  // And the pictures: both backends draw the inside, alike.
+  Image software = render(mesh(), o);
+  o.backend = Backend::OsMesa;
+  Image osmesa = render(mesh(), o);
+  Agreement a = compare(osmesa, software);
+  EXPECT_LE(a.meanAbs, 1.0);
+  EXPECT_LE(a.shareOver4, 0.005);
+  o.cullBack = false;
+  EXPECT_GT(compare(osmesa, render(mesh(), o)).shareOver4, 0.1) << "culling changed little";
+}
+
+TEST_F(ViewerTest, CulledWireframeBackendsAgree) {
+  RenderOptions o = options(Backend::Software, Shading::Smooth, 128);
+  o.camera = behindTheBox();
+  o.cullBack = o.wireframe = true;
+  Image software = render(mesh(), o);
+  o.backend = Backend::OsMesa;
+  Image osmesa = render(mesh(), o);
+  Agreement a = compare(osmesa, software);
+  EXPECT_LE(a.shareOver4, 0.01) << "mean " << a.meanAbs;
+}
+
 TEST(ViewerInput, MissingRadiosityPropertiesAreNamed) {
   PlyMesh ply;
   ply.vertex = {{"x", PlyColumn::Type::Float, {0, 1, 0}},
@@ -714,6 +775,192 @@ TEST_F(LocalTest, SpecularHighlightOnlyWithSpecularMaterial) {
   glm::dvec3 lower0 = meanAround(plain, backCentre.x, backCentre.y, 1);
   glm::dvec3 lower1 = meanAround(highlighted, backCentre.x, backCentre.y, 1);
   EXPECT_LT(lower1.x - lower0.x, 0.5 * peak / 3);
+}
+
+// ---- Lights, attenuation, fog and the light model, on in-memory variants of the empty box -------
+
+/// The global ambient term alone on a white surface (light model ambient 0.2 × material ambient,
+/// the reflectance): the byte a surface shows that no light reaches.
+double ambientByte(const LocalScene& local, int channel = 0) {
+  const Material& white = local.scene.materials[size_t(materialIndex(local.scene, "white"))];
+  return 255 * local.scene.lightModel.ambient[channel] * white.reflectance[channel];
+}
+
+Light whiteLight(Light::Type type) {
+  Light l;
+  l.type = type;
+  l.diffuse = glm::dvec4(1, 1, 1, 1);
+  l.specular = glm::dvec4(0, 0, 0, 1);
+  return l;
+}
+
+TEST_F(LocalTest, DirectionalLightLightsSurfacesFacingIt) {
+  const RenderOptions o = localOptions();
+  const glm::ivec2 floor = pixelOf(*empty_, o, {278, 0, 280});
+  const glm::ivec2 ceiling = pixelOf(*empty_, o, {278, 548.8, 120});
+  const double ambient = ambientByte(*empty_);
+  for (double up : {1.0, -1.0}) {
+    LocalScene lit = *empty_;
+    Light sun = whiteLight(Light::Type::Directional);
+    sun.direction = glm::dvec3(0, up, 0);  // towards the light: above (up = 1) or below
+    lit.scene.lights = {sun};
+    Image image = renderLocal(lit, o);
+    const double f = meanAround(image, floor.x, floor.y, 1).x;
+    const double c = meanAround(image, ceiling.x, ceiling.y, 1).x;
+    const double facing = up > 0 ? f : c, away = up > 0 ? c : f;
+    // Facing the light: ambient + full diffuse (N·L = 1); facing away: the ambient term only.
+    EXPECT_NEAR(facing, ambient + 255 * 0.725, 3) << "up " << up;
+    EXPECT_NEAR(away, ambient, 2) << "up " << up;
+  }
+}
+
+TEST_F(LocalTest, SpotLightLightsItsConeAndTheExponentConcentratesIt) {
+  const RenderOptions o = localOptions();
+  const glm::dvec3 lamp(278, 540, 279.6);
+  const glm::ivec2 axis = pixelOf(*empty_, o, {278, 0, 279.6});
+  // 12° off the axis (inside the 20° cone) and 30° off it (outside).
+  const glm::ivec2 inside = pixelOf(*empty_, o, {278 + 540 * std::tan(12 * kPi / 180), 0, 279.6});
+  const glm::ivec2 outside = pixelOf(*empty_, o, {500, 0, 500});
+  const double ambient = ambientByte(*empty_);
+  double share[2] = {0, 0};  // lit part 12° off the axis over the lit part on it
+  const double exponents[2] = {0, 60};
+  for (int k = 0; k < 2; ++k) {
+    LocalScene lit = *empty_;
+    Light spot = whiteLight(Light::Type::Spot);
+    spot.position = lamp;
+    spot.direction = glm::dvec3(0, -1, 0);
+    spot.cutoffDeg = 20;
+    spot.exponent = exponents[k];
+    lit.scene.lights = {spot};
+    Image image = renderLocal(lit, o);
+    const double a = meanAround(image, axis.x, axis.y, 1).x;
+    const double i = meanAround(image, inside.x, inside.y, 0).x;
+    const double out = meanAround(image, outside.x, outside.y, 1).x;
+    // On the axis: ambient + full diffuse (exponent 0; with exponent 60 Gouraud shading spreads
+    // the steep fall-off of the vertices around it).
+    if (k == 0) EXPECT_NEAR(a, ambient + 255 * 0.725, 4);
+    else EXPECT_GT(a, ambient + 120);
+    EXPECT_GT(i, ambient + 30) << "exponent " << exponents[k];
+    EXPECT_NEAR(out, ambient, 2) << "outside the cone, exponent " << exponents[k];
+    share[k] = (i - ambient) / (a - ambient);
+  }
+  // Exponent 0: only N·L = cos 12° (0.98); exponent 60: times cos⁶⁰ 12° (0.27).
+  EXPECT_GT(share[0], 0.85);
+  EXPECT_LT(share[1], 0.6 * share[0]) << "exponent 0: " << share[0] << ", 60: " << share[1];
+}
+
+TEST_F(LocalTest, QuadraticAttenuationDarkensFarSurfaces) {
+  const RenderOptions o = localOptions();
+  // A lamp 100 mm above the floor and 409 mm in front of the back wall, facing both squarely.
+  const glm::dvec3 lamp(278, 100, 150);
+  const glm::ivec2 near = pixelOf(*empty_, o, {278, 0, 150});
+  const glm::ivec2 far = pixelOf(*empty_, o, {278, 100, 559.2});
+  const double ambient = ambientByte(*empty_);
+  const double kq = 1e-4;
+  double n[2], f[2];
+  for (int k = 0; k < 2; ++k) {
+    LocalScene lit = *empty_;
+    Light point = whiteLight(Light::Type::Point);
+    point.position = lamp;
+    point.attenuation = glm::dvec3(1, 0, k ? kq : 0);
+    lit.scene.lights = {point};
+    Image image = renderLocal(lit, o);
+    n[k] = meanAround(image, near.x, near.y, 0).x;
+    f[k] = meanAround(image, far.x, far.y, 0).x;
+  }
+  // kc only: both facing the lamp squarely, the same brightness.
+  // (Gouraud shading: the vertices around the near point see the lamp slightly obliquely.)
+  EXPECT_NEAR(n[0], ambient + 255 * 0.725, 8);
+  EXPECT_NEAR(f[0], ambient + 255 * 0.725, 8);
+  // 1 / (kc + kq d²): 0.5 at 100 mm, 0.056 at 409.2 mm.
+  EXPECT_NEAR(n[1], ambient + 255 * 0.725 / (1 + kq * 100 * 100), 12);
+  EXPECT_NEAR(f[1], ambient + 255 * 0.725 / (1 + kq * 409.2 * 409.2), 6);
+  EXPECT_LT(f[1] / n[1], 0.6 * f[0] / n[0]);
+}
+
+TEST_F(LocalTest, ExpAndExp2FogFollowOpenGLsFormulas) {
+  const RenderOptions o = localOptions();
+  const glm::ivec2 back = pixelOf(*empty_, o, {278, 420, 559.2});  // eye depth 1359.2
+  const glm::ivec2 front = pixelOf(*empty_, o, {278, 0, 10});      // eye depth 810
+  const Image clear = renderLocal(*empty_, o);
+  const glm::dvec3 back0 = meanAround(clear, back.x, back.y, 1);
+  const glm::dvec3 front0 = meanAround(clear, front.x, front.y, 0);
+  for (Fog::Mode mode : {Fog::Mode::Exp, Fog::Mode::Exp2}) {
+    LocalScene fogged = *empty_;
+    Fog fog;
+    fog.mode = mode;
+    fog.color = glm::dvec4(0.2, 0.4, 0.9, 1.0);
+    fog.density = 0.8 / 1359.2;  // d·z = 0.8 on the back wall
+    fogged.scene.fog = fog;
+    const Image foggy = renderLocal(fogged, o);
+    auto factor = [&](double z) {
+      const double dz = fog.density * z;
+      return mode == Fog::Mode::Exp ? std::exp(-dz) : std::exp(-dz * dz);
+    };
+    const char* name = mode == Fog::Mode::Exp ? "exp" : "exp2";
+    const glm::dvec3 back1 = meanAround(foggy, back.x, back.y, 1);
+    const glm::dvec3 front1 = meanAround(foggy, front.x, front.y, 0);
+    for (int c = 0; c < 3; ++c) {
+      const double fb = factor(1359.2), ff = factor(810);
+      EXPECT_NEAR(back1[c], fb * back0[c] + (1 - fb) * 255 * fog.color[c], 8)
+          << name << " back wall, channel " << c;
+      EXPECT_NEAR(front1[c], ff * front0[c] + (1 - ff) * 255 * fog.color[c], 8)
+          << name << " front of the floor, channel " << c;
+    }
+  }
+}
+
+TEST_F(LocalTest, TwoSidedLightingLightsBackFacesWithTheReversedNormal) {
+  // From behind the box the back wall shows its back face. The point light is inside the box:
+  // one-sided lighting uses the front normal (towards the light: lit); two-sided lighting
+  // reverses it for back faces (away from the light: the ambient term only).
+  RenderOptions o = localOptions();
+  o.camera = ViewCamera{{278, 273, 1400}, {278, 273, 0}, {0, 1, 0}, 39.3};
+  const glm::ivec2 wall = pixelOf(*empty_, o, {278, 300, 559.2});
+  double value[2];
+  for (int twoSided = 0; twoSided < 2; ++twoSided) {
+    LocalScene lit = *empty_;
+    lit.scene.lightModel.twoSided = twoSided == 1;
+    lit.scene.lights = {whiteLight(Light::Type::Point)};
+    lit.scene.lights[0].position = glm::dvec3(278, 540, 279.6);
+    value[twoSided] = meanAround(renderLocal(lit, o), wall.x, wall.y, 1).x;
+  }
+  EXPECT_GT(value[0], ambientByte(*empty_) + 50) << "one-sided";
+  EXPECT_NEAR(value[1], ambientByte(*empty_), 2) << "two-sided";
+}
+
+TEST_F(LocalTest, LocalViewerMovesTheSpecularHighlight) {
+  // Camera inside the box facing the back wall, a lamp off to one side near the front. Infinite
+  // viewer (V = +z in the eye): the highlight is on the back wall straight behind the lamp
+  // (x = 100); local viewer: at the mirror point between lamp and eye (x = 200). Either way the
+  // other point's half vector is about 6° off the wall's normal (cos¹⁰⁰ 6° = 0.58).
+  RenderOptions o = localOptions();
+  o.camera = ViewCamera{{278, 273, 200}, {278, 273, 559.2}, {0, 1, 0}, 60};
+  const glm::ivec2 behindLamp = pixelOf(*empty_, o, {100, 273, 559.2});
+  const glm::ivec2 mirror = pixelOf(*empty_, o, {200, 273, 559.2});
+  ASSERT_GT(std::abs(behindLamp.x - mirror.x), 20);
+  double gainBehind[2], gainMirror[2];
+  for (int local = 0; local < 2; ++local) {
+    LocalScene scene = *empty_;
+    scene.scene.lightModel.localViewer = local == 1;
+    Light lamp = whiteLight(Light::Type::Point);
+    lamp.diffuse = glm::dvec4(0, 0, 0, 1);  // specular only: no saturation near the highlight
+    lamp.position = glm::dvec3(100, 273, 100);
+    scene.scene.lights = {lamp};
+    const Image plain = renderLocal(scene, o);
+    scene.scene.lights[0].specular = glm::dvec4(1, 1, 1, 1);
+    Material& white = scene.scene.materials[size_t(materialIndex(scene.scene, "white"))];
+    white.specular = glm::dvec4(1, 1, 1, 1);
+    white.shininess = 100;
+    const Image shiny = renderLocal(scene, o);
+    auto gain = [&](glm::ivec2 p) {
+      return meanAround(shiny, p.x, p.y, 1).z - meanAround(plain, p.x, p.y, 1).z;
+    };
+    gainBehind[local] = gain(behindLamp);
+    gainMirror[local] = gain(mirror);
+  }
+  EXPECT_GT(gainBehind[0], gainMirror[0] + 20) << "infinite viewer";
+  EXPECT_GT(gainMirror[1], gainBehind[1] + 20) << "local viewer";
 }
 
 TEST_F(LocalTest, OptionsAndScenesTheLocalModelRefuses) {
