@@ -59,15 +59,14 @@ void finish() {
   OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
 }
 
-void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
-              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-              GLenum type, void* buffer, bool cullBack) {
-  Context ctx = makeCurrent(width, height, type, buffer);
+/// The state every pass starts from: cleared black colour and far depth, depth test LESS, no
+/// dithering, flat or smooth shading, culling of back faces or none, and the camera matrices.
+void beginFrame(int width, int height, Shading shade, bool cullBack, const glm::mat4& projection,
+                const glm::mat4& view) {
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_LIGHTING);
   if (cullBack) {
     glFrontFace(GL_CCW);
     glCullFace(GL_BACK);
@@ -83,6 +82,14 @@ void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const
   glLoadMatrixf(glm::value_ptr(projection));
   glMatrixMode(GL_MODELVIEW);
   glLoadMatrixf(glm::value_ptr(view));
+}
+
+void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
+              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+              GLenum type, void* buffer, bool cullBack) {
+  Context ctx = makeCurrent(width, height, type, buffer);
+  beginFrame(width, height, shade, cullBack, projection, view);
+  glDisable(GL_LIGHTING);
 
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
@@ -157,19 +164,7 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
   const size_t pixels = size_t(width) * height;
   std::vector<GLubyte> buffer(pixels * 4);
   Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  glViewport(0, 0, width, height);
-  glClearColor(0, 0, 0, 1);
-  glClearDepth(1.0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DITHER);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(glm::value_ptr(projection));
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixf(glm::value_ptr(view));
+  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
 
   setupLights(scene);
   glEnable(GL_LIGHTING);
@@ -227,19 +222,7 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
   const size_t pixels = size_t(width) * height;
   std::vector<GLubyte> buffer(pixels * 4);
   Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  glViewport(0, 0, width, height);
-  glClearColor(0, 0, 0, 1);
-  glClearDepth(1.0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DITHER);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(glm::value_ptr(projection));
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixf(glm::value_ptr(view));
+  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
   setupLights(scene);
   // Diffuse and ambient come from radiosity: the material's are zero and the vertex colour is
   // the emission; lighting adds only the specular term, summed after as a separate colour.
