@@ -75,34 +75,17 @@ const std::array<double, 256>& srgbDecodeTable() {
 
 uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
-/// Box-filters a (width·k) × (height·k) bottom-up byte picture down to width × height, top row
-/// first, averaging in linear light.
-std::vector<uint8_t> downsampleBytes(const std::vector<uint8_t>& big, int width, int height, int k) {
-  std::vector<uint8_t> out(size_t(width) * height * 3);
-  const int bigWidth = width * k;
-  if (k == 1) {
+/// Box-filters a (width·k) × (height·k) bottom-up picture down to width × height, top row first:
+/// each value is taken to linear light by `decode`, averaged, and brought back by `encode`.
+template <class T, class Decode, class Encode>
+std::vector<T> boxFilter(const std::vector<T>& big, int width, int height, int k, Decode decode,
+                         Encode encode) {
+  std::vector<T> out(size_t(width) * height * 3);
+  if (k == 1) {  // only the flip: no round trip through linear light
     for (int y = 0; y < height; ++y)
       std::copy_n(&big[size_t(height - 1 - y) * width * 3], width * 3, &out[size_t(y) * width * 3]);
     return out;
   }
-  const auto& decode = srgbDecodeTable();
-  const double norm = 1.0 / (k * k);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        double sum = 0;
-        for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i)
-            sum += decode[big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c]];
-        out[(size_t(height - 1 - y) * width + x) * 3 + c] =
-            uint8_t(std::lround(255 * srgbEncode(sum * norm)));
-      }
-  return out;
-}
-
-/// Same for linear floats (plain average).
-std::vector<float> downsampleFloats(const std::vector<float>& big, int width, int height, int k) {
-  std::vector<float> out(size_t(width) * height * 3);
   const int bigWidth = width * k;
   const double norm = 1.0 / (k * k);
   for (int y = 0; y < height; ++y)
@@ -110,10 +93,23 @@ std::vector<float> downsampleFloats(const std::vector<float>& big, int width, in
       for (int c = 0; c < 3; ++c) {
         double sum = 0;
         for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i) sum += big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c];
-        out[(size_t(height - 1 - y) * width + x) * 3 + c] = float(sum * norm);
+          for (int i = 0; i < k; ++i) sum += decode(big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c]);
+        out[(size_t(height - 1 - y) * width + x) * 3 + c] = encode(sum * norm);
       }
   return out;
+}
+
+/// Bytes (sRGB): averaged in linear light.
+std::vector<uint8_t> downsampleBytes(const std::vector<uint8_t>& big, int width, int height, int k) {
+  const auto& table = srgbDecodeTable();
+  return boxFilter(big, width, height, k, [&](uint8_t v) { return table[v]; },
+                   [](double x) { return uint8_t(std::lround(255 * srgbEncode(x))); });
+}
+
+/// Linear floats: a plain average.
+std::vector<float> downsampleFloats(const std::vector<float>& big, int width, int height, int k) {
+  return boxFilter(big, width, height, k, [](float v) { return double(v); },
+                   [](double x) { return float(x); });
 }
 
 /// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.

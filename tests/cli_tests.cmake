@@ -5,18 +5,12 @@ set(DATA ${CMAKE_CURRENT_SOURCE_DIR}/data)
 set(OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
 file(MAKE_DIRECTORY ${OUT_DIR})
 
-# name, expected exit code, stderr regex, output file or "", then the arguments.
+include(${CMAKE_CURRENT_SOURCE_DIR}/cli_case.cmake)
+
+# name, expected exit code, stderr regex, output file or "", then the arguments ("OUT/" is the
+# case's own folder under cli_out/).
 function(cli_test name code regex output)
-  list(JOIN ARGN "|" joined)  # run_cli.cmake splits the command at "|"
-  set(args "-DCOMMAND=${CLI}|${joined}" -DEXPECT_CODE=${code} -DOUTPUT_DIR=${OUT_DIR})
-  if(NOT regex STREQUAL "")
-    list(APPEND args "-DEXPECT_STDERR=${regex}")
-  endif()
-  if(NOT output STREQUAL "")
-    list(APPEND args -DOUTPUT=${output})
-  endif()
-  add_test(NAME cli.${name}
-           COMMAND ${CMAKE_COMMAND} ${args} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_cli.cmake)
+  add_cli_case(cli.${name} ${CLI} ${OUT_DIR}/${name} ${code} "${regex}" "${output}" ${ARGN})
 endfunction()
 
 # Every shipped scene loads, meshes and writes.
@@ -24,7 +18,7 @@ file(GLOB scenes ${PROJECT_SOURCE_DIR}/scenes/*.json)
 foreach(scene ${scenes})
   get_filename_component(stem ${scene} NAME_WE)
   cli_test(info.${stem} 0 "" "" info ${scene})
-  cli_test(mesh.${stem} 0 "wrote" ${OUT_DIR}/${stem}.ply mesh ${scene} -o ${OUT_DIR}/${stem}.ply)
+  cli_test(mesh.${stem} 0 "wrote" OUT/${stem}.ply mesh ${scene} -o OUT/${stem}.ply)
 endforeach()
 cli_test(help 0 "" "" --help)
 cli_test(mesh_help 0 "" "" mesh --help)
@@ -53,23 +47,23 @@ set(bad_cases
   bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\"")
 while(bad_cases)
   list(POP_FRONT bad_cases case regex)
-  cli_test(bad.${case} 1 "radiosity: error: .*${case}.json: ${regex}" ${OUT_DIR}/${case}.ply
-           mesh ${DATA}/bad/${case}.json -o ${OUT_DIR}/${case}.ply)
+  cli_test(bad.${case} 1 "radiosity: error: .*${case}.json: ${regex}" OUT/${case}.ply
+           mesh ${DATA}/bad/${case}.json -o OUT/${case}.ply)
   cli_test(bad_info.${case} 1 "radiosity: error: " "" info ${DATA}/bad/${case}.json)
 endwhile()
 cli_test(bad.missing_scene 1 "radiosity: error: .*nowhere.json: expected a readable scene file, found no such file"
-         ${OUT_DIR}/nowhere.ply mesh ${DATA}/nowhere.json -o ${OUT_DIR}/nowhere.ply)
+         OUT/nowhere.ply mesh ${DATA}/nowhere.json -o OUT/nowhere.ply)
 cli_test(bad.output_folder 1 "radiosity: error: .*no_such_folder/out.ply: expected an output file in an existing folder"
-         "" mesh ${DATA}/good_small.json -o ${OUT_DIR}/no_such_folder/out.ply)
+         "" mesh ${DATA}/good_small.json -o OUT/no_such_folder/out.ply)
 
 # Usage errors: exit 2, no output.
-cli_test(usage.unknown_flag 2 "--frobnicate" ${OUT_DIR}/usage1.ply
-         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage1.ply --frobnicate)
+cli_test(usage.unknown_flag 2 "--frobnicate" OUT/usage1.ply
+         mesh ${DATA}/good_small.json -o OUT/usage1.ply --frobnicate)
 cli_test(usage.missing_output 2 "output" "" mesh ${DATA}/good_small.json)
-cli_test(usage.missing_value 2 "max-element-edge" ${OUT_DIR}/usage2.ply
-         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage2.ply --max-element-edge)
-cli_test(usage.negative_edge 2 "max-element-edge" ${OUT_DIR}/usage3.ply
-         mesh ${DATA}/good_small.json -o ${OUT_DIR}/usage3.ply --max-element-edge -1)
+cli_test(usage.missing_value 2 "max-element-edge" OUT/usage2.ply
+         mesh ${DATA}/good_small.json -o OUT/usage2.ply --max-element-edge)
+cli_test(usage.negative_edge 2 "max-element-edge" OUT/usage3.ply
+         mesh ${DATA}/good_small.json -o OUT/usage3.ply --max-element-edge -1)
 cli_test(usage.no_command 2 "" "")
 
 # formfactors: JSON on stdout; bad surface names are bad input, missing choices usage errors.
@@ -88,21 +82,21 @@ cli_test(usage.formfactors_odd_hemicube 2 "even" "" formfactors ${PROJECT_SOURCE
 cli_test(usage.formfactors_point_without_normal 2 "normal" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0,0,0)
 
 # solve: the main job, on a small scene; a scene without emitters is bad input for solve only.
-cli_test(solve.small 0 "converged after" ${OUT_DIR}/small.ply
-         solve ${DATA}/good_small.json -o ${OUT_DIR}/small.ply --report ${OUT_DIR}/small.json --hemicube 64)
-cli_test(solve.shot_limit 0 "stopped after 3 shots" ${OUT_DIR}/limited.ply
-         solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o ${OUT_DIR}/limited.ply --max-shots 3 --hemicube 32)
+cli_test(solve.small 0 "converged after" OUT/small.ply
+         solve ${DATA}/good_small.json -o OUT/small.ply --report OUT/small.json --hemicube 64)
+cli_test(solve.shot_limit 0 "stopped after 3 shots" OUT/limited.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/limited.ply --max-shots 3 --hemicube 32)
 cli_test(bad.solve_no_emitter 1 "no_emitter.json: surfaces: expected at least one surface whose material has an emission, found none"
-         ${OUT_DIR}/no_emitter.ply solve ${DATA}/no_emitter.json -o ${OUT_DIR}/no_emitter.ply)
+         OUT/no_emitter.ply solve ${DATA}/no_emitter.json -o OUT/no_emitter.ply)
 cli_test(info.no_emitter 0 "" "" info ${DATA}/no_emitter.json)
 cli_test(bad.solve_report_folder 1 "no_such_folder/r.json: expected an output file in an existing folder"
-         ${OUT_DIR}/r.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/r.ply --report ${OUT_DIR}/no_such_folder/r.json --hemicube 32)
-cli_test(usage.solve_overshoot 2 "overshoot" ${OUT_DIR}/o.ply solve ${DATA}/good_small.json -o ${OUT_DIR}/o.ply --overshoot 3)
-cli_test(solve.reference_direct 0 "converged after" ${OUT_DIR}/ref.ply
-         solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o ${OUT_DIR}/ref.ply --reference direct --hemicube 64)
+         OUT/r.ply solve ${DATA}/good_small.json -o OUT/r.ply --report OUT/no_such_folder/r.json --hemicube 32)
+cli_test(usage.solve_overshoot 2 "overshoot" OUT/o.ply solve ${DATA}/good_small.json -o OUT/o.ply --overshoot 3)
+cli_test(solve.reference_direct 0 "converged after" OUT/ref.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/ref.ply --reference direct --hemicube 64)
 cli_test(bad.solve_reference_mismatch 1 "small.ply: expected a result of the same scene and mesh settings"
-         ${OUT_DIR}/mismatch.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o ${OUT_DIR}/mismatch.ply
-         --reference ${OUT_DIR}/small.ply --hemicube 32)
+         OUT/mismatch.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/mismatch.ply
+         --reference ${OUT_DIR}/solve.small/small.ply --hemicube 32)
 set_tests_properties(cli.bad.solve_reference_mismatch PROPERTIES DEPENDS cli.solve.small)
-cli_test(convergence.small 0 "Gauss-Seidel" ${OUT_DIR}/conv.svg
-         convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o ${OUT_DIR}/conv.svg --csv ${OUT_DIR}/conv.csv --hemicube 32)
+cli_test(convergence.small 0 "Gauss-Seidel" OUT/conv.svg
+         convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/conv.svg --csv OUT/conv.csv --hemicube 32)

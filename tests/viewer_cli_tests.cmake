@@ -25,24 +25,11 @@ target_compile_definitions(viewer_test PRIVATE
 add_dependencies(viewer_test radiosity_cli radview)
 gtest_discover_tests(viewer_test PROPERTIES FIXTURES_REQUIRED viewer_input)
 
-# name, expected exit code, stderr regex, output file or "", then the arguments. Each case has its
-# own output folder (OUT in the output and the arguments), so that run_cli.cmake's check for
-# left-over temporary files does not see the files of cases running in parallel.
+# name, expected exit code, stderr regex, output file or "", then the arguments ("OUT/" is the
+# case's own folder).
 function(viewer_cli_test name code regex output)
-  set(dir ${VIEWER_OUT}/cli/${name})
-  file(MAKE_DIRECTORY ${dir})
-  string(REPLACE "OUT/" "${dir}/" output "${output}")
-  list(TRANSFORM ARGN REPLACE "^OUT/" "${dir}/")
-  list(JOIN ARGN "|" joined)  # run_cli.cmake splits the command at "|"
-  set(args "-DCOMMAND=$<TARGET_FILE:radview>|${joined}" -DEXPECT_CODE=${code} -DOUTPUT_DIR=${dir})
-  if(NOT regex STREQUAL "")
-    list(APPEND args "-DEXPECT_STDERR=${regex}")
-  endif()
-  if(NOT output STREQUAL "")
-    list(APPEND args -DOUTPUT=${output})
-  endif()
-  add_test(NAME viewer_cli.${name}
-           COMMAND ${CMAKE_COMMAND} ${args} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_cli.cmake)
+  add_cli_case(viewer_cli.${name} $<TARGET_FILE:radview> ${VIEWER_OUT}/cli/${name} ${code}
+               "${regex}" "${output}" ${ARGN})
   set_tests_properties(viewer_cli.${name} PROPERTIES FIXTURES_REQUIRED viewer_input)
 endfunction()
 
