@@ -186,11 +186,6 @@ TEST_F(CornellSolveTest, DoublingEmissionDoublesRadiosity) {
                   1e-12 * std::abs(once.radiosity()[e][k]) + 1e-300);
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 /// Progressive refinement, Jacobi and Gauss–Seidel all converge to the direct solution of the
 /// system built from the very same hemicubes.
@@ -233,11 +228,6 @@ TEST(ReferenceTest, RelativeErrorIgnoresEmittersAndWeighsByArea) {
   EXPECT_NEAR(relativeError(mesh, B, ref), 0.1, 1e-12);
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 /// Scaling the geometry and every length setting by a power of two scales every floating-point
 /// quantity exactly, so radiosities must not move: a difference reveals an absolute tolerance.
@@ -269,11 +259,6 @@ TEST(ScaleTest, RadiosityIsScaleInvariant) {
   }
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 /// scenes/penumbra.json: a 100×100 light 200 above the floor, a 40×40 black square 100 above
 /// it. The exact direct factor from a floor point x is the light's minus that of the part of
@@ -338,11 +323,6 @@ TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
     if (std::abs(x) > 90 + 2 * L) EXPECT_NEAR(ratio, 1.0, 0.05) << "at x = " << x;
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
   Scene scene = loadScene(kScenes + "cornell.json");
@@ -359,11 +339,6 @@ TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
   EXPECT_EQ(results[0], results[1]);
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 /// Generalised furnace (oracles.md §4): closed, uniform ρ, any emission →
 /// Σ A·B = Σ A·E / (1 − ρ), per channel; hemicube rows that leak would break it.
@@ -384,11 +359,6 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
   }
 }
 
-}  // namespace
-}  // namespace rad
-
-namespace rad {
-namespace {
 
 /// Every element's power is shot exactly once in total (weights sum to 1), from points on the
 /// patch, and the samples are at least as many as asked for.
