@@ -1,17 +1,18 @@
-// Surfaces ▸ planar pieces ▸ patches ▸ elements.
+// Surfaces ▸ planar pieces ▸ elements ▸ patches.
 //
-// Meshing runs twice with one mechanism: planar pieces are meshed into patches (triangles no
-// longer than maxPatchEdge), then every patch is meshed into elements (no longer than
-// maxElementEdge), so elements nest inside patches. In each pass every boundary edge is cut
-// at the corners of other pieces that lie on it and then into equal parts; the parts are
-// keyed by their end points, so two pieces sharing an edge compute the very same points
-// on it. Delaunay refinement may still split a boundary part (encroachment); such points
-// are added to the shared part and its other users are meshed again until all agree.
+// Planar pieces are meshed into elements (triangles no longer than maxElementEdge) by
+// Delaunay refinement. Every boundary edge is first cut at the corners of other pieces that
+// lie on it and then into equal parts; the parts are keyed by their end points, so two
+// pieces sharing an edge compute the very same points on it. Refinement may still split a
+// boundary part (encroachment); such points are added to the shared part and its other users
+// are meshed again until all agree. The elements of each piece are then grown into compact
+// patches no wider than maxPatchEdge.
 #include "mesh/patch_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <queue>
 #include <set>
 #include <unordered_map>
 
@@ -360,6 +361,69 @@ std::vector<Piece> planarPieces(const Scene& scene, PointTable& table,
   return pieces;
 }
 
+/// The largest distance between two of the points.
+double diameter(const PointTable& table, const std::vector<int>& ids) {
+  double widest = 0;
+  for (size_t i = 0; i < ids.size(); ++i)
+    for (size_t j = i + 1; j < ids.size(); ++j)
+      widest = std::max(widest, glm::length(table[ids[i]] - table[ids[j]]));
+  return widest;
+}
+
+/// Groups the triangles of one planar piece into patches no wider than maxDiameter: each patch
+/// grows from the first free triangle in sweep order (along the frame's u axis, then v) to the
+/// free edge-neighbours nearest its seed while its diameter allows, so patches are connected
+/// and compact. Returns triangle indices per patch.
+std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFrame& frame,
+                                          const std::vector<std::array<int, 3>>& triangles,
+                                          double maxDiameter) {
+  const int n = int(triangles.size());
+  std::vector<glm::dvec2> centre(n);
+  std::map<std::pair<int, int>, std::vector<int>> byEdge;
+  for (int k = 0; k < n; ++k) {
+    const auto& t = triangles[k];
+    centre[k] = frame.project((table[t[0]] + table[t[1]] + table[t[2]]) / 3.0);
+    for (int i = 0; i < 3; ++i) byEdge[std::minmax(t[i], t[(i + 1) % 3])].push_back(k);
+  }
+  std::vector<std::vector<int>> neighbours(n);
+  for (const auto& [edge, users] : byEdge)
+    for (int a : users)
+      for (int b : users)
+        if (a != b) neighbours[a].push_back(b);
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::make_pair(centre[a].x, centre[a].y) < std::make_pair(centre[b].x, centre[b].y);
+  });
+
+  std::vector<std::vector<int>> patches;
+  std::vector<bool> taken(n, false);
+  for (int seed : order) {
+    if (taken[seed]) continue;
+    std::vector<int> patch, points;
+    using Candidate = std::pair<double, int>;  // distance to the seed, triangle
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> frontier;
+    std::set<int> queued{seed};
+    frontier.push({0.0, seed});
+    while (!frontier.empty()) {
+      int k = frontier.top().second;
+      frontier.pop();
+      bool fits = true;
+      for (int v : triangles[k])
+        for (int q : points) fits = fits && glm::length(table[v] - table[q]) <= maxDiameter;
+      if (!fits) continue;
+      taken[k] = true;
+      patch.push_back(k);
+      points.insert(points.end(), triangles[k].begin(), triangles[k].end());
+      for (int m : neighbours[k])
+        if (!taken[m] && queued.insert(m).second)
+          frontier.push({glm::length(centre[m] - centre[seed]), m});
+    }
+    patches.push_back(std::move(patch));
+  }
+  return patches;
+}
+
 double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   glm::dvec3 u = b - a, v = c - a;
   return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI;
@@ -410,30 +474,21 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
   std::vector<Piece> pieces = planarPieces(scene, table, wheres, out.warnings);
   double tolerance = kOnEdgeTolerance * scene.diagonal();
 
-  // Pass 1: pieces into patches.
-  int rounds1 = 0, rounds2 = 0;
-  PieceMesher coarse(table, pieces, settings.maxPatchEdge, tolerance, wheres);
-  auto patchTriangles = coarse.run(rounds1);
-  std::vector<Piece> patchPieces;
-  std::vector<std::string> patchWheres;
-  for (size_t p = 0; p < pieces.size(); ++p)
-    for (const auto& t : patchTriangles[p]) {
-      patchPieces.push_back(Piece{pieces[p].surface, pieces[p].frame, {{t[0], t[1], t[2]}}});
-      patchWheres.push_back(wheres[p]);
-    }
-
-  // Pass 2: patches into elements.
-  PieceMesher fine(table, patchPieces, settings.maxElementEdge, tolerance, patchWheres);
-  auto elementTriangles = fine.run(rounds2);
-  out.stats.rounds = std::max(rounds1, rounds2);
-  int unresolved = coarse.unresolvedPoints() + fine.unresolvedPoints();
-  if (unresolved)
-    out.warnings.push_back("meshing: " + std::to_string(unresolved) +
+  int rounds = 0;
+  PieceMesher mesher(table, pieces, settings.maxElementEdge, tolerance, wheres);
+  auto elementTriangles = mesher.run(rounds);
+  out.stats.rounds = rounds;
+  if (mesher.unresolvedPoints())
+    out.warnings.push_back("meshing: " + std::to_string(mesher.unresolvedPoints()) +
                            " boundary points could not be shared with the neighbouring surface");
+  std::vector<std::vector<std::vector<int>>> patchesOfPiece(pieces.size());
+  for (size_t p = 0; p < pieces.size(); ++p)
+    patchesOfPiece[p] = growPatches(table, pieces[p].frame, elementTriangles[p],
+                                    settings.maxPatchEdge);
 
   // Build the OpenMesh mesh, one vertex set per surface side.
-  std::vector<std::vector<int>> patchesOfSurface(scene.surfaces.size());
-  for (size_t p = 0; p < patchPieces.size(); ++p) patchesOfSurface[patchPieces[p].surface].push_back(int(p));
+  std::vector<std::vector<int>> piecesOfSurface(scene.surfaces.size());
+  for (size_t p = 0; p < pieces.size(); ++p) piecesOfSurface[pieces[p].surface].push_back(int(p));
   int nonManifold = 0;
   for (size_t s = 0; s < scene.surfaces.size(); ++s) {
     const Surface& surface = scene.surfaces[s];
@@ -447,47 +502,48 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
         vertexOf[id] = v;
         return v;
       };
-      for (int p : patchesOfSurface[s]) {
-        Patch patch;
-        patch.surface = int(s);
-        patch.side = side;
-        glm::dvec3 normal = patchPieces[p].frame.normal * (side ? -1.0 : 1.0);
-        for (auto t : elementTriangles[p]) {
-          if (side) std::swap(t[1], t[2]);
-          glm::dvec3 a = table[t[0]], b = table[t[1]], c = table[t[2]];
-          double area = triangleArea(a, b, c);
-          if (!(area > 0)) continue;  // cannot happen after Delaunay refinement; never add zero area
-          auto f = out.mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2]));
-          if (!f.is_valid()) {  // non-manifold input (mesh files): give the face its own corners
-            ++nonManifold;
-            f = out.mesh.add_face(out.mesh.add_vertex(PatchMesh::toOpenMesh(a)),
-                                  out.mesh.add_vertex(PatchMesh::toOpenMesh(b)),
-                                  out.mesh.add_vertex(PatchMesh::toOpenMesh(c)));
+      for (int piece : piecesOfSurface[s]) {
+        for (const auto& group : patchesOfPiece[piece]) {
+          Patch patch;
+          patch.surface = int(s);
+          patch.side = side;
+          glm::dvec3 normal = pieces[piece].frame.normal * (side ? -1.0 : 1.0);
+          std::vector<int> patchPoints;
+          for (int k : group) {
+            auto t = elementTriangles[piece][k];
+            patchPoints.insert(patchPoints.end(), t.begin(), t.end());
+            if (side) std::swap(t[1], t[2]);
+            glm::dvec3 a = table[t[0]], b = table[t[1]], c = table[t[2]];
+            double area = triangleArea(a, b, c);
+            if (!(area > 0)) continue;  // never after Delaunay refinement; never add zero area
+            auto f = out.mesh.add_face(vertex(t[0]), vertex(t[1]), vertex(t[2]));
+            if (!f.is_valid()) {  // non-manifold input (mesh files): give the face its own corners
+              ++nonManifold;
+              f = out.mesh.add_face(out.mesh.add_vertex(PatchMesh::toOpenMesh(a)),
+                                    out.mesh.add_vertex(PatchMesh::toOpenMesh(b)),
+                                    out.mesh.add_vertex(PatchMesh::toOpenMesh(c)));
+            }
+            int e = f.idx();
+            out.setElement(e, int(s), side, area, material.reflectance, material.emission, normal);
+            out.setPatch(e, int(out.patches.size()));
+            patch.elements.push_back(e);
+            patch.area += area;
+            patch.centroid += area * (a + b + c) / 3.0;
+            out.stats.minAngleDeg = std::min({out.stats.minAngleDeg, angleDeg(a, b, c),
+                                              angleDeg(b, c, a), angleDeg(c, a, b)});
+            out.stats.maxEdge = std::max({out.stats.maxEdge, glm::length(b - a),
+                                          glm::length(c - b), glm::length(a - c)});
           }
-          int e = f.idx();
-          out.setElement(e, int(s), side, area, material.reflectance, material.emission, normal);
-          out.setPatch(e, int(out.patches.size()));
-          patch.elements.push_back(e);
-          patch.area += area;
-          patch.centroid += area * (a + b + c) / 3.0;
-          out.stats.minAngleDeg = std::min({out.stats.minAngleDeg, angleDeg(a, b, c),
-                                            angleDeg(b, c, a), angleDeg(c, a, b)});
-          out.stats.maxEdge = std::max({out.stats.maxEdge, glm::length(b - a),
-                                        glm::length(c - b), glm::length(a - c)});
+          if (patch.elements.empty()) continue;
+          patch.centroid /= patch.area;
+          patch.normal = normal;
+          patch.diameter = diameter(table, patchPoints);
+          out.stats.maxPatchDiameter = std::max(out.stats.maxPatchDiameter, patch.diameter);
+          if (side == 0) out.surfaces[s].area += patch.area;
+          out.surfaces[s].elements += int(patch.elements.size());
+          out.surfaces[s].patches += 1;
+          out.patches.push_back(std::move(patch));
         }
-        if (patch.elements.empty()) continue;
-        patch.centroid /= patch.area;
-        patch.normal = normal;
-        const auto& r = patchPieces[p].rings[0];
-        patch.corners = {table[r[0]], table[r[side ? 2 : 1]], table[r[side ? 1 : 2]]};
-        patch.diameter = std::max({glm::length(table[r[0]] - table[r[1]]),
-                                   glm::length(table[r[1]] - table[r[2]]),
-                                   glm::length(table[r[2]] - table[r[0]])});
-        out.stats.maxPatchDiameter = std::max(out.stats.maxPatchDiameter, patch.diameter);
-        if (side == 0) out.surfaces[s].area += patch.area;
-        out.surfaces[s].elements += int(patch.elements.size());
-        out.surfaces[s].patches += 1;
-        out.patches.push_back(std::move(patch));
       }
     }
   }

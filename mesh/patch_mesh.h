@@ -33,8 +33,7 @@ struct Patch {
   double area = 0;
   glm::dvec3 centroid{0.0};    ///< area-weighted
   glm::dvec3 normal{0.0};      ///< area-weighted mean, unit
-  double diameter = 0;
-  std::array<glm::dvec3, 3> corners;  ///< the patch triangle its elements tile, lit-side CCW
+  double diameter = 0;         ///< largest distance between two of its points
 };
 
 /// Per-surface totals.

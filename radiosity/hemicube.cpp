@@ -5,6 +5,10 @@
 #include <map>
 #include <mutex>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -106,7 +110,8 @@ Hemicube::Hemicube(const HemicubeGeometry& geometry, int resolution, double scen
     faces_[f] = std::make_unique<raster::Target>(resolution, resolution / 2, true, false);
   ids_.resize(geometry.elementCount());
   local_.resize(geometry.positions.size());
-  accumulator_.assign(geometry.elementCount(), 0.0);
+  accumulator_.assign(geometry.elementCount() + 2, 0.0);
+  seen_.assign((geometry.elementCount() + 2 + 63) / 64, 0);
 }
 
 Hemicube::~Hemicube() = default;
@@ -181,54 +186,68 @@ void Hemicube::renderFaces() {
 void Hemicube::accumulate(FormFactors& out) {
   out.elements.clear();
   out.factors.clear();
-  double sky = 0, back = 0;
-  const uint32_t n = uint32_t(accumulator_.size());
-  // Neighbouring pixels mostly see the same element: sum runs, then add each run once.
-  auto flush = [&](uint32_t id, double sum) {
-    if (id < n) {
-      if (accumulator_[id] == 0) touched_.push_back(int(id));
-      accumulator_[id] += sum;
-    } else if (id == raster::kNoItem) {
-      sky += sum;
-    } else {
-      back += sum;
-    }
+  // Slots: the elements, then sky, then back faces (every other id is an occluder's back).
+  const uint32_t n = uint32_t(geometry_.elementCount()), skySlot = n, backSlot = n + 1;
+  double* const acc = accumulator_.data();
+  uint64_t* const seen = seen_.data();
+  auto slot = [&](uint32_t id) { return id < n ? id : id == raster::kNoItem ? skySlot : backSlot; };
+  auto add = [&](uint32_t id, double value) {
+    const uint32_t s = slot(id);
+    acc[s] += value;
+    seen[s >> 6] |= uint64_t(1) << (s & 63);
   };
   for (int f = 0; f < 5; ++f) {
     const uint32_t* item = faces_[f]->item.data();
     const double* delta = (f == 0 ? delta_.top : delta_.side).data();
     const size_t count = faces_[f]->item.size();
+    size_t k = 0;
+#if defined(__SSE2__)
+    // Neighbouring pixels mostly see the same element: while four pixels at a time continue
+    // the current run, sum them in two independent partial sums; a chunk where the run ends
+    // flushes the run and adds its own pixels one by one (no branch per pixel).
     uint32_t run = item[0];
-    double sum = 0;
-    for (size_t k = 0; k < count; ++k) {
-      if (item[k] != run) {
-        flush(run, sum);
-        run = item[k];
-        sum = 0;
+    __m128d part0 = _mm_setzero_pd(), part1 = _mm_setzero_pd();
+    auto flush = [&] {
+      alignas(16) double lanes[4];
+      _mm_store_pd(lanes, part0);
+      _mm_store_pd(lanes + 2, part1);
+      add(run, (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]));
+      part0 = part1 = _mm_setzero_pd();
+    };
+    __m128i runs = _mm_set1_epi32(int(run));
+    for (; k + 4 <= count; k += 4) {
+      const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(item + k));
+      if (_mm_movemask_epi8(_mm_cmpeq_epi32(ids, runs)) == 0xFFFF) {
+        part0 = _mm_add_pd(part0, _mm_loadu_pd(delta + k));
+        part1 = _mm_add_pd(part1, _mm_loadu_pd(delta + k + 2));
+        continue;
       }
-      sum += delta[k];
+      flush();
+      for (size_t i = k; i < k + 4; ++i) add(item[i], delta[i]);
+      run = item[k + 3];
+      runs = _mm_set1_epi32(int(run));
     }
-    flush(run, sum);
+    flush();
+#endif
+    for (; k < count; ++k) add(item[k], delta[k]);
   }
-  out.sky = sky;
-  out.backFaces = back;
-  // Ascending element order: sort a few, or scan the dense accumulator when many were seen.
-  if (touched_.size() * 32 > accumulator_.size()) {
-    for (size_t e = 0; e < accumulator_.size(); ++e)
-      if (accumulator_[e] != 0) {
+  out.sky = acc[skySlot];
+  out.backFaces = acc[backSlot];
+  acc[skySlot] = acc[backSlot] = 0;
+  seen[skySlot >> 6] &= ~(uint64_t(1) << (skySlot & 63));
+  seen[backSlot >> 6] &= ~(uint64_t(1) << (backSlot & 63));
+  // Ascending element order, from the bit set of the slots seen.
+  for (size_t w = 0; w < seen_.size(); ++w) {
+    for (uint64_t bits = seen[w]; bits; bits &= bits - 1) {
+      const uint32_t e = uint32_t(w * 64 + size_t(__builtin_ctzll(bits)));
+      if (acc[e] != 0) {
         out.elements.push_back(int(e));
-        out.factors.push_back(accumulator_[e]);
-        accumulator_[e] = 0;
+        out.factors.push_back(acc[e]);
       }
-  } else {
-    std::sort(touched_.begin(), touched_.end());
-    for (int e : touched_) {
-      out.elements.push_back(e);
-      out.factors.push_back(accumulator_[e]);
-      accumulator_[e] = 0;
+      acc[e] = 0;
     }
+    seen[w] = 0;
   }
-  touched_.clear();
 }
 
 double hemicubeRotation(uint64_t seed, uint64_t shooter, uint64_t sample) {

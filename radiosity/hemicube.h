@@ -99,8 +99,8 @@ class Hemicube {
   std::vector<uint32_t> drawIndices_, drawIds_;  // the triangles above the base plane
   std::vector<std::array<float, 3>> local_;
   std::vector<glm::vec4> clip_;
-  std::vector<double> accumulator_;
-  std::vector<int> touched_;
+  std::vector<double> accumulator_;  // per element, then sky and back faces
+  std::vector<uint64_t> seen_;       // bit set of the accumulator slots written
 };
 
 /// A deterministic rotation in [0, 1) for (seed, shooter, sample point): every run, and the

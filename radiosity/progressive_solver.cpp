@@ -13,44 +13,86 @@
 namespace rad {
 namespace {
 
-/// Overlaps below this share of an element are round-off at a part's edge.
-constexpr double kNegligibleOverlap = 1e-12;
 /// Recompute the running unshot total this often, so its round-off cannot drift.
 constexpr long kResumEvery = 256;
 
-/// The 4ᵏ triangles of k-fold midpoint subdivision of (a, b, c).
-void subdivideTriangles(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int k,
-                        std::vector<std::array<glm::dvec3, 3>>& out) {
-  if (k == 0) {
-    out.push_back({a, b, c});
-    return;
-  }
-  glm::dvec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
-  subdivideTriangles(a, ab, ca, k - 1, out);
-  subdivideTriangles(ab, b, bc, k - 1, out);
-  subdivideTriangles(ca, bc, c, k - 1, out);
-  subdivideTriangles(ab, bc, ca, k - 1, out);
+/// A part of an element a shooter sample may take: `share` of the element's power.
+struct Part {
+  int element;
+  double share, area;
+  glm::dvec3 centroid;
+  std::array<glm::dvec3, 3> corners;
+};
+
+/// Cuts triangle (a, b, c) into m² congruent triangles (each edge into m equal pieces).
+void subdivide(int element, const std::array<glm::dvec3, 3>& t, int m, std::vector<Part>& out) {
+  const glm::dvec3 u = (t[1] - t[0]) / double(m), v = (t[2] - t[0]) / double(m);
+  const double area = 0.5 * glm::length(glm::cross(u, v)), share = 1.0 / double(m * m);
+  auto add = [&](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r) {
+    out.push_back({element, share, area, (p + q + r) / 3.0, {p, q, r}});
+  };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; i + j < m; ++j) {
+      glm::dvec3 p = t[0] + double(i) * u + double(j) * v;
+      add(p, p + u, p + v);
+      if (i + j + 1 < m) add(p + u, p + u + v, p + v);
+    }
 }
 
-/// Area of the part of the triangle `element` inside the coplanar triangle `part` (normal n):
-/// the element clipped by the part's three edges (Sutherland–Hodgman).
-double overlapArea(const std::array<glm::dvec3, 3>& element, const std::array<glm::dvec3, 3>& part,
-                   const glm::dvec3& n) {
-  std::vector<glm::dvec3> poly(element.begin(), element.end()), next;
-  for (int k = 0; k < 3 && poly.size() >= 3; ++k) {
-    glm::dvec3 a = part[k], inward = glm::cross(n, part[(k + 1) % 3] - a);
-    next.clear();
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const glm::dvec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
-      double dp = glm::dot(p - a, inward), dq = glm::dot(q - a, inward);
-      if (dp >= 0) next.push_back(p);
-      if ((dp >= 0) != (dq >= 0)) next.push_back(p + (q - p) * (dp / (dp - dq)));
-    }
-    poly.swap(next);
+/// Splits `parts` into `strata` groups of about equal area: ordered along the longest axis of
+/// their centroids' bounding box and cut where the running area best matches the share of the
+/// first half of the strata; each half is split in turn.
+void bisectByArea(std::vector<Part> parts, int strata, std::vector<std::vector<Part>>& out) {
+  if (strata <= 1 || parts.size() <= 1) {
+    out.push_back(std::move(parts));
+    return;
   }
-  glm::dvec3 twice(0.0);
-  for (size_t i = 1; i + 1 < poly.size(); ++i) twice += glm::cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
-  return 0.5 * std::abs(glm::dot(twice, n));
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const Part& p : parts) {
+    lo = glm::min(lo, p.centroid);
+    hi = glm::max(hi, p.centroid);
+  }
+  glm::dvec3 extent = hi - lo;
+  int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  std::stable_sort(parts.begin(), parts.end(), [&](const Part& a, const Part& b) {
+    return a.centroid[axis] < b.centroid[axis];
+  });
+  double total = 0;
+  for (const Part& p : parts) total += p.area;
+  const int first = strata / 2;
+  const double target = total * first / strata;
+  size_t cut = 1;  // at least one part on each side
+  double running = parts[0].area, best = std::abs(running - target);
+  for (size_t i = 1; i + 1 < parts.size(); ++i) {
+    running += parts[i].area;
+    if (std::abs(running - target) < best) best = std::abs(running - target), cut = i + 1;
+  }
+  std::vector<Part> tail(parts.begin() + long(cut), parts.end());
+  parts.resize(cut);
+  bisectByArea(std::move(parts), first, out);
+  bisectByArea(std::move(tail), strata - first, out);
+}
+
+/// Where a stratum shoots from: its area-weighted centroid, or, should that fall outside its
+/// parts (a stratum bent round a corner of the patch), the nearest part centroid.
+glm::dvec3 stratumPoint(const std::vector<Part>& stratum, const glm::dvec3& normal) {
+  glm::dvec3 centre(0.0);
+  double area = 0;
+  for (const Part& p : stratum) {
+    centre += p.area * p.centroid;
+    area += p.area;
+  }
+  centre /= area;
+  glm::dvec3 nearest = stratum[0].centroid;
+  for (const Part& p : stratum) {
+    const auto& c = p.corners;
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+      inside = inside && glm::dot(glm::cross(c[(k + 1) % 3] - c[k], centre - c[k]), normal) >= 0;
+    if (inside) return centre;
+    if (glm::length(p.centroid - centre) < glm::length(nearest - centre)) nearest = p.centroid;
+  }
+  return nearest;
 }
 
 }  // namespace
@@ -63,50 +105,37 @@ double EnergyLedger::residual() const {
   return worst;
 }
 
-std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum) {
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count) {
   const Patch& p = mesh.patches[patch];
-  const int n = int(p.elements.size());
-  std::vector<ShooterSample> out;
-  std::vector<std::array<glm::dvec3, 3>> parts;
-  auto centroid = [](const std::array<glm::dvec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; };
-  if (n < minimum) {
-    int k = 0;
-    while (n << (2 * k) < minimum) ++k;
-    for (int e : p.elements) {
-      auto c = mesh.corners(e);
-      parts.clear();
-      subdivideTriangles(c[0], c[1], c[2], k, parts);
-      for (const auto& t : parts)
-        out.push_back({{e}, {1.0 / double(parts.size())}, centroid(t), mesh.normal(e)});
-    }
-    return out;
-  }
-  int k = 0;
-  while ((1 << (2 * k)) < minimum) ++k;
-  subdivideTriangles(p.corners[0], p.corners[1], p.corners[2], k, parts);
-  out.resize(parts.size());
-  for (size_t i = 0; i < parts.size(); ++i) {
-    out[i].point = centroid(parts[i]);
-    out[i].normal = p.normal;
-  }
-  // Each element shares its power among the parts by overlap area, so that a uniform patch
-  // shoots the same power from every part, and every element's weights sum to 1.
-  const glm::dvec3 plane =
-      glm::normalize(glm::cross(p.corners[1] - p.corners[0], p.corners[2] - p.corners[0]));
-  std::vector<double> overlap(parts.size());
+  std::vector<Part> parts;
   for (int e : p.elements) {
-    auto c = mesh.corners(e);
-    double sum = 0;
-    for (size_t i = 0; i < parts.size(); ++i) sum += overlap[i] = overlapArea(c, parts[i], plane);
-    for (size_t i = 0; i < parts.size(); ++i) {
-      if (!(overlap[i] > kNegligibleOverlap * sum)) continue;
-      out[i].elements.push_back(e);
-      out[i].weights.push_back(overlap[i] / sum);
-    }
+    // Enough m×m parts that the patch has at least `count` of them, spread by area.
+    double quota = double(count) * mesh.area(e) / p.area;
+    int m = std::max(1, int(std::ceil(std::sqrt(quota) - 1e-9)));
+    subdivide(e, mesh.corners(e), m, parts);
   }
-  out.erase(std::remove_if(out.begin(), out.end(),
-                           [](const ShooterSample& s) { return s.elements.empty(); }),
-            out.end());
+  std::vector<std::vector<Part>> strata;
+  bisectByArea(std::move(parts), count, strata);
+  std::vector<ShooterSample> out;
+  for (const auto& stratum : strata) {
+    ShooterSample s;
+    s.point = stratumPoint(stratum, p.normal);
+    s.normal = p.normal;
+    for (const Part& part : stratum) {
+      if (!s.elements.empty() && s.elements.back() == part.element) {
+        s.weights.back() += part.share;
+        continue;
+      }
+      auto at = std::find(s.elements.begin(), s.elements.end(), part.element);
+      if (at != s.elements.end()) {
+        s.weights[size_t(at - s.elements.begin())] += part.share;
+      } else {
+        s.elements.push_back(part.element);
+        s.weights.push_back(part.share);
+      }
+    }
+    out.push_back(std::move(s));
+  }
   return out;
 }
 
@@ -148,6 +177,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
   patchUnshot_.assign(mesh.patches.size(), glm::dvec3(0.0));
   shotsOf_.assign(mesh.patches.size(), 0);
   samples_.resize(mesh.patches.size());
+  rows_.resize(mesh.patches.size());
   for (size_t p = 0; p < mesh.patches.size(); ++p) {
     glm::dvec3 power(0.0);
     for (int e : mesh.patches[p].elements) power += area_[e] * dB_[e];
@@ -209,19 +239,29 @@ void ProgressiveSolver::run() {
 }
 
 void ProgressiveSolver::computeFactors(int patch, const std::vector<glm::dvec3>& powers) {
+  auto& rows = rows_[patch];
   const auto& samples = samples_[patch];
-  if (sampleFactors_.size() < samples.size()) sampleFactors_.resize(samples.size());
+  std::vector<int> todo;
+  for (size_t index = 0; index < samples.size(); ++index)
+    if (powers[index] != glm::dvec3(0.0) && !rows[index].ready) todo.push_back(int(index));
   // Workers take samples round-robin; each uses its own hemicube.
   auto work = [&](int worker, int stride) {
-    for (size_t index = worker; index < samples.size(); index += stride)
-      if (powers[index] != glm::dvec3(0.0))
-        factors_.factors(patch, int(index), samples[index], sampleFactors_[index], worker);
+    for (size_t k = worker; k < todo.size(); k += stride)
+      factors_.factors(patch, todo[k], samples[todo[k]], rows[todo[k]].factors, worker);
   };
-  int workers = std::min<int>(factors_.workers(), int(samples.size()));
+  int workers = std::min<int>(factors_.workers(), int(todo.size()));
   std::vector<std::thread> threads;
   for (int w = 1; w < workers; ++w) threads.emplace_back(work, w, workers);
-  work(0, workers);
+  if (workers > 0) work(0, workers);
   for (auto& t : threads) t.join();
+  for (int index : todo) rows[index].ready = true;
+  hemicubes_ += long(todo.size());
+}
+
+/// Bytes one cached row takes.
+static size_t rowBytes(const FormFactors& f) {
+  return sizeof(FormFactors) + f.elements.capacity() * sizeof(int) +
+         f.factors.capacity() * sizeof(double);
 }
 
 void ProgressiveSolver::shoot(int patch) {
@@ -242,12 +282,16 @@ void ProgressiveSolver::shoot(int patch) {
       powers[index] += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
     powers[index] *= omega;
   }
+  auto& rows = rows_[patch];
+  if (rows.empty()) rows.resize(samples.size());
+  std::vector<bool> wasReady(rows.size());
+  for (size_t index = 0; index < rows.size(); ++index) wasReady[index] = rows[index].ready;
   computeFactors(patch, powers);
   // Deliver in sample order, so that the result does not depend on the workers.
   for (size_t index = 0; index < samples.size(); ++index) {
     const glm::dvec3& power = powers[index];
     if (power == glm::dvec3(0.0)) continue;
-    const FormFactors& ff_ = sampleFactors_[index];
+    const FormFactors& ff_ = rows[index].factors;
     glm::dvec3 delivered(0.0);
     for (size_t k = 0; k < ff_.elements.size(); ++k) {
       int j = ff_.elements[k];
@@ -265,6 +309,16 @@ void ProgressiveSolver::shoot(int patch) {
     // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
     ledger_.escaped += power - delivered;
     powerShot_ += std::abs(luminance(power));
+  }
+  // Keep the new rows while the budget allows; otherwise let them go.
+  for (size_t index = 0; index < rows.size(); ++index) {
+    if (wasReady[index] || !rows[index].ready) continue;
+    size_t bytes = rowBytes(rows[index].factors);
+    if (cachedBytes_ + bytes <= options_.factorCacheBytes) {
+      cachedBytes_ += bytes;
+    } else {
+      rows[index] = SampleRow{};
+    }
   }
   // The shooter keeps (1 − ω) of its unshot power: zero, or negative when overshooting.
   glm::dvec3 left(0.0);

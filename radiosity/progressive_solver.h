@@ -65,6 +65,10 @@ struct SolverOptions {
   double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
   int emitterSamples = 64;   ///< at least this many points on an emitting patch
   int shooterSamples = 4;    ///< at least this many points on any other patch
+  /// Memory for keeping each sample's form factors after its first shot, so that a patch
+  /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
+  /// A fixed budget, whatever the scene size; 0 recomputes every time.
+  size_t factorCacheBytes = size_t(256) << 20;
 };
 
 class ProgressiveSolver {
@@ -95,10 +99,15 @@ class ProgressiveSolver {
   glm::dvec3 ambient() const;
   /// Patches that never shot so far (nothing, or too little, to send).
   int patchesNeverShot() const;
+  /// Hemicubes (factor computations) so far; shots reuse cached factors.
+  long hemicubes() const { return hemicubes_; }
+  /// Memory the cached factors take.
+  size_t cachedBytes() const { return cachedBytes_; }
 
  private:
   int pickShooter() const;
   void shoot(int patch);
+  /// Makes sure rows_[patch][i] holds sample i's factors for every sample with power.
   void computeFactors(int patch, const std::vector<glm::dvec3>& powers);
   void setPatchUnshot(int patch, const glm::dvec3& power);
 
@@ -118,14 +127,21 @@ class ProgressiveSolver {
   long shots_ = 0;
   Stop stop_ = Stop::None;
   std::chrono::steady_clock::time_point start_;
-  std::vector<FormFactors> sampleFactors_;  // one per sample of the current shot
+  /// Per patch, per sample: its form factors, once computed (kept within the cache budget).
+  struct SampleRow {
+    FormFactors factors;
+    bool ready = false;
+  };
+  std::vector<std::vector<SampleRow>> rows_;
+  size_t cachedBytes_ = 0;
+  long hemicubes_ = 0;
 };
 
-/// Stratified samples over a patch, about `minimum` of them. A patch with fewer elements splits
-/// each element into 4ᵏ equal triangles (midpoint subdivision) and shoots a share of it from
-/// each centroid; a patch with more splits its own triangle into 4ᵏ ≥ minimum parts, each of
-/// which shoots, from its centroid, the elements' power in proportion to their overlap with it
-/// (parts no element overlaps are dropped). Each element's weights sum to 1.
-std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int minimum);
+/// `count` stratified samples over a patch (fewer only if the patch has fewer elements and
+/// count is 1). Each element is cut into m×m congruent triangles, m chosen so that the patch
+/// has at least `count` parts spread by area; the parts are split into `count` strata of
+/// about equal area by recursive bisection, and each stratum shoots its parts' shares of
+/// their elements' power from its centroid. Each element's weights sum to 1.
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count);
 
 }  // namespace rad

@@ -373,10 +373,9 @@ TEST(SamplesTest, StratifiedSamplesCoverEachElementOnce) {
       std::map<int, double> weight;
       for (const auto& s : samples) {
         for (size_t k = 0; k < s.elements.size(); ++k) weight[s.elements[k]] += s.weights[k];
-        // On the patch's plane, inside its triangle (within round-off).
-        glm::dvec3 n = glm::normalize(glm::cross(patch.corners[1] - patch.corners[0],
-                                                 patch.corners[2] - patch.corners[0]));
-        EXPECT_NEAR(glm::dot(s.point - patch.corners[0], n), 0.0, 1e-9 * scene.diagonal());
+        // On the patch's plane, within the patch (round-off aside).
+        EXPECT_NEAR(glm::dot(s.point - patch.centroid, patch.normal), 0.0, 1e-9 * scene.diagonal());
+        EXPECT_LE(glm::length(s.point - patch.centroid), patch.diameter * (1 + 1e-9));
       }
       ASSERT_EQ(weight.size(), patch.elements.size()) << "patch " << p;
       for (const auto& [e, w] : weight) EXPECT_NEAR(w, 1.0, 1e-12) << "element " << e;

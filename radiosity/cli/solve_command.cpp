@@ -136,6 +136,8 @@ void runSolve(const SolveOptions& o) {
                         {"full_matrix", "not built (progressive path)"}};
   report["counts"] = counts;
   report["shots"] = solver.shots();
+  report["hemicubes"] = solver.hemicubes();
+  report["factor_cache_bytes"] = solver.cachedBytes();
   report["seconds"] = solver.seconds();
   report["stop_reason"] = stopName(solver.stopReason());
   report["exposure"] = exposure;
