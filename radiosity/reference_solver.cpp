@@ -1,6 +1,8 @@
 #include "radiosity/reference_solver.h"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "mesh/color.h"
 #include "mesh/error.h"
@@ -22,23 +24,31 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
     rho_[e] = mesh.reflectance(e);
     E_[e] = mesh.emission(e);
   }
-  FormFactors ff;
-  for (int p = 0; p < int(mesh.patches.size()); ++p) {
-    bool emits = false;
-    for (int e : mesh.patches[p].elements) emits = emits || luminance(mesh.emission(e)) > 0;
-    auto samples = patchSamples(mesh, p, emits ? options.emitterSamples : options.shooterSamples);
-    for (int index = 0; index < int(samples.size()); ++index) {
-      const ShooterSample& s = samples[index];
-      factors.factors(p, index, s, ff);
-      for (size_t k = 0; k < ff.elements.size(); ++k) {
-        int j = ff.elements[k];
-        for (size_t m = 0; m < s.elements.size(); ++m) {
-          int i = s.elements[m];
-          G_(j, i) += s.weights[m] * ff.factors[k] * mesh.area(i) / mesh.area(j);
+  // Workers take patches round-robin; a patch writes only its own elements' columns.
+  auto work = [&](int worker, int stride) {
+    FormFactors ff;
+    for (int p = worker; p < int(mesh.patches.size()); p += stride) {
+      bool emits = false;
+      for (int e : mesh.patches[p].elements) emits = emits || luminance(mesh.emission(e)) > 0;
+      auto samples = patchSamples(mesh, p, emits ? options.emitterSamples : options.shooterSamples);
+      for (int index = 0; index < int(samples.size()); ++index) {
+        const ShooterSample& s = samples[index];
+        factors.factors(p, index, s, ff, worker);
+        for (size_t k = 0; k < ff.elements.size(); ++k) {
+          int j = ff.elements[k];
+          for (size_t m = 0; m < s.elements.size(); ++m) {
+            int i = s.elements[m];
+            G_(j, i) += s.weights[m] * ff.factors[k] * mesh.area(i) / mesh.area(j);
+          }
         }
       }
     }
-  }
+  };
+  const int workers = std::max(1, factors.workers());
+  std::vector<std::thread> threads;
+  for (int w = 1; w < workers; ++w) threads.emplace_back(work, w, workers);
+  work(0, workers);
+  for (auto& t : threads) t.join();
 }
 
 std::vector<glm::dvec3> TransportMatrix::solveDirect() const {

@@ -360,6 +360,52 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
 }
 
 
+/// The furnace (oracles.md §4): a closed cube, 8×8 square elements per face (each two
+/// triangles; the squares are the patches), uniform ρ and emission E = 1 → B = E/(1−ρ) at
+/// every element. Hemicube factors at R = 256 from 64 stratified points per square; the
+/// system is solved directly on exactly those factors (the progressive solver converges to
+/// the same solution: ProgressiveTest.ConvergesToTheDirectSolution). What is left is the
+/// proximity error of point-sampled shooters next to the cube's edges.
+TEST(FurnaceTest, EveryElementWithinTolerance) {
+  constexpr int kGrid = 8;
+  constexpr int kSamplesPerSquare = 64;
+  constexpr int kResolution = 256;
+  Scene scene = loadScene(kScenes + "furnace.json");  // unit cube, E = 1 everywhere
+  for (auto& surface : scene.surfaces) {
+    Ring q = surface.polygons[0].outer;
+    auto at = [&](int i, int j) {
+      return q[0] + (q[1] - q[0]) * (double(i) / kGrid) + (q[3] - q[0]) * (double(j) / kGrid);
+    };
+    surface.polygons.clear();
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j)
+        surface.polygons.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}, {}});
+  }
+  const double side = 1.0 / kGrid;
+  // Edges up to the square's diagonal: two triangles per square, one patch per square.
+  PatchMesh mesh = buildPatchMesh(scene, {side * std::sqrt(2.0) * 1.001, side * std::sqrt(2.0) * 1.001});
+  ASSERT_EQ(mesh.elementCount(), 6 * kGrid * kGrid * 2);
+  ASSERT_EQ(int(mesh.patches.size()), 6 * kGrid * kGrid);
+
+  SolverOptions options;
+  options.emitterSamples = options.shooterSamples = kSamplesPerSquare;
+  HemicubeFactors factors(mesh, kResolution, scene.diagonal(), 1);
+  TransportMatrix transport(mesh, factors, options);
+  const int n = transport.size();
+  const struct {
+    double rho, tolerance;
+  } cases[] = {{0.5, 0.005}, {0.9, 0.01}, {0.99, 0.02}};
+  for (const auto& c : cases) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - c.rho * transport.G();
+    Eigen::VectorXd B = A.partialPivLu().solve(Eigen::VectorXd::Ones(n));
+    double worst = 0;
+    for (int e = 0; e < n; ++e) worst = std::max(worst, std::abs(B(e) * (1 - c.rho) - 1));
+    EXPECT_LE(worst, c.tolerance) << "rho " << c.rho;
+    std::printf("furnace rho %.2f: worst element off by %.3f %%\n", c.rho, 100 * worst);
+  }
+}
+
+
 /// Every element's power is shot exactly once in total (weights sum to 1), from points on the
 /// patch, and the samples are at least as many as asked for.
 TEST(SamplesTest, StratifiedSamplesCoverEachElementOnce) {
