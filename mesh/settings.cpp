@@ -21,6 +21,7 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.exposure = flags.exposure ? flags.exposure : file.exposure;
   s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, 64);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, 4);
+  s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
   return s;
 }
 

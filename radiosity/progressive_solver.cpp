@@ -105,6 +105,13 @@ double EnergyLedger::residual() const {
   return worst;
 }
 
+bool isGrey(const PatchMesh& mesh) {
+  auto same = [](const glm::dvec3& v) { return v.x == v.y && v.y == v.z; };
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (!same(mesh.reflectance(e)) || !same(mesh.emission(e))) return false;
+  return true;
+}
+
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count) {
   const Patch& p = mesh.patches[patch];
   std::vector<Part> parts;
@@ -172,6 +179,7 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
     totalArea_ += area_[e];
   }
   rhoMean_ /= totalArea_;
+  grey_ = isGrey(mesh);
   ledger_.unshot = ledger_.emitted;
   emittedLuminance_ = luminance(ledger_.emitted);
   patchUnshot_.assign(mesh.patches.size(), glm::dvec3(0.0));
@@ -293,7 +301,24 @@ void ProgressiveSolver::shoot(int patch) {
     if (power == glm::dvec3(0.0)) continue;
     const FormFactors& ff_ = rows[index].factors;
     glm::dvec3 delivered(0.0);
-    for (size_t k = 0; k < ff_.elements.size(); ++k) {
+    if (grey_) {  // one channel, copied
+      double sent = 0, kept = 0;
+      for (size_t k = 0; k < ff_.elements.size(); ++k) {
+        int j = ff_.elements[k];
+        double arriving = power.x * ff_.factors[k], reflected = rho_[j].x * arriving;
+        sent += arriving;
+        kept += arriving - reflected;
+        if (reflected == 0) continue;
+        double dB = reflected / area_[j];
+        B_[j] += dB;
+        dB_[j] += dB;
+        int q = patchOf_[j];
+        setPatchUnshot(q, patchUnshot_[q] + reflected);
+      }
+      delivered = glm::dvec3(sent);
+      ledger_.absorbed += glm::dvec3(kept);
+    }
+    for (size_t k = 0; k < (grey_ ? 0 : ff_.elements.size()); ++k) {
       int j = ff_.elements[k];
       glm::dvec3 arriving = power * ff_.factors[k];
       glm::dvec3 reflected = rho_[j] * arriving;  // ρⱼ·ΔBᵢ·Fᵢⱼ·Aᵢ/Aⱼ per unit area of j

@@ -99,6 +99,8 @@ class ProgressiveSolver {
   glm::dvec3 ambient() const;
   /// Patches that never shot so far (nothing, or too little, to send).
   int patchesNeverShot() const;
+  /// Whether one channel is solved and copied to the others (a grey scene).
+  bool grey() const { return grey_; }
   /// Hemicubes (factor computations) so far; shots reuse cached factors.
   long hemicubes() const { return hemicubes_; }
   /// Memory the cached factors take.
@@ -134,8 +136,13 @@ class ProgressiveSolver {
   };
   std::vector<std::vector<SampleRow>> rows_;
   size_t cachedBytes_ = 0;
+  bool grey_ = false;
   long hemicubes_ = 0;
 };
+
+/// True when every element's reflectance and emission are the same in all three channels:
+/// one channel then carries the whole solution.
+bool isGrey(const PatchMesh& mesh);
 
 /// `count` stratified samples over a patch (fewer only if the patch has fewer elements and
 /// count is 1). Each element is cut into m×m congruent triangles, m chosen so that the patch

@@ -18,6 +18,7 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
                                                " elements for the dense reference solution",
                      std::to_string(n) + " elements (use a coarser mesh or --reference FILE.ply)");
   G_ = Eigen::MatrixXd::Zero(n, n);
+  grey_ = isGrey(mesh);
   rho_.resize(n);
   E_.resize(n);
   for (int e = 0; e < n; ++e) {
@@ -54,7 +55,8 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
 std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
   const int n = size();
   std::vector<glm::dvec3> B(n);
-  for (int c = 0; c < 3; ++c) {
+  const bool grey = grey_;
+  for (int c = 0; c < (grey ? 1 : 3); ++c) {
     Eigen::MatrixXd A = -G_;
     Eigen::VectorXd rhs(n);
     for (int j = 0; j < n; ++j) {
@@ -65,6 +67,8 @@ std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
     Eigen::VectorXd x = A.partialPivLu().solve(rhs);
     for (int j = 0; j < n; ++j) B[j][c] = x(j);
   }
+  if (grey)
+    for (auto& b : B) b = glm::dvec3(b.x);
   return B;
 }
 

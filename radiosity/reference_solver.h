@@ -41,6 +41,7 @@ class TransportMatrix {
  private:
   Eigen::MatrixXd G_;
   std::vector<glm::dvec3> rho_, E_;
+  bool grey_ = false;  ///< one channel solved, copied to the others
 };
 
 /// Relative L2 error of element radiosity over non-emitting elements, area weighted:

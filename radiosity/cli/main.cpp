@@ -32,6 +32,10 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--shooter-samples", flags.shooterSamples,
                  "Shooting points on each other patch, at least (solver.shooter_samples; default 4)")
       ->check(CLI::Range(1, 65536));
+  app.add_option("--factor-cache-mb", flags.factorCacheMb,
+                 "Memory for reusing a patch's form factors when it shoots again, MiB "
+                 "(solver.factor_cache_mb; default 256; 0: recompute)")
+      ->check(CLI::Range(0.0, 1e9));
 }
 
 SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
@@ -54,6 +58,7 @@ SolverOptions solverOptions(const Settings& settings) {
   options.overshoot = settings.overshoot;
   options.emitterSamples = settings.emitterSamples;
   options.shooterSamples = settings.shooterSamples;
+  options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
   return options;
 }
 

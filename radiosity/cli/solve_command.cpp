@@ -121,6 +121,7 @@ void runSolve(const SolveOptions& o) {
   s["overshoot"] = settings.overshoot;
   s["emitter_samples"] = options.emitterSamples;
   s["shooter_samples"] = options.shooterSamples;
+  s["factor_cache_mb"] = settings.factorCacheMb;
   report["settings"] = s;
   Json counts;
   counts["surfaces"] = scene.surfaces.size();
@@ -133,6 +134,7 @@ void runSolve(const SolveOptions& o) {
   for (int e = 0; e < mesh.elementCount(); ++e) black += mesh.reflectance(e) == glm::dvec3(0.0);
   counts["left_out"] = {{"black_elements_receive_nothing", black},
                         {"patches_never_shot", solver.patchesNeverShot()},
+                        {"channels_solved", solver.grey() ? 1 : 3},
                         {"full_matrix", "not built (progressive path)"}};
   report["counts"] = counts;
   report["shots"] = solver.shots();
