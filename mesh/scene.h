@@ -87,7 +87,7 @@ struct Fog {
 /// take defaults relative to the scene size (see resolveSettings).
 struct SolverBlock {
   std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
-  std::optional<double> factorCacheMb;
+  std::optional<double> factorCacheMb, proximitySamples;
   std::optional<int> hemicubeResolution, emitterSamples, shooterSamples;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;

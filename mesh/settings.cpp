@@ -12,7 +12,8 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
                           scene.diagonal() / kDefaultElementsPerDiagonal);
   s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
                         s.maxElementEdge * kDefaultPatchToElement);
-  s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, 256);
+  s.hemicubeResolution =
+      pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
   s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
@@ -20,7 +21,9 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.exposure = flags.exposure ? flags.exposure : file.exposure;
   s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, 64);
-  s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, 4);
+  s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
+  s.proximitySamples =
+      pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
   return s;
 }

@@ -16,12 +16,19 @@ constexpr double kDefaultOvershoot = 1.3;
 /// Default memory for keeping form factors between a patch's shots, MiB: a fixed budget
 /// (the Cornell box at 4 000 elements needs about 40).
 constexpr double kDefaultFactorCacheMb = 256;
+/// Default hemicube resolution and shooting points. Measured on the Cornell box at 3 958
+/// elements against a fine solution (element-sized patches, 16 points each, R = 512): R = 128
+/// with 1 point per patch raised to 0.7·(D/d)² near other surfaces is within 2.0 % (L2) in
+/// 0.41 s; R = 256 with 4 points on every patch was within 2.8 % in 0.58 s.
+constexpr int kDefaultHemicubeResolution = 128;
+constexpr int kDefaultShooterSamples = 1;
+constexpr double kDefaultProximitySamples = 0.7;
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
 
 struct Settings {
   double maxElementEdge = 0, maxPatchEdge = 0;
-  int hemicubeResolution = 256;
+  int hemicubeResolution = kDefaultHemicubeResolution;
   double tolerance = 1e-3;
   unsigned seed = 1;
   long maxShots = 0;         ///< 0: no limit
@@ -29,7 +36,8 @@ struct Settings {
   double overshoot = kDefaultOvershoot;  ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
   int emitterSamples = 64;   ///< at least this many shooting points on an emitting patch
-  int shooterSamples = 4;    ///< on any other patch
+  int shooterSamples = 1;    ///< on any other patch
+  double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
 
   MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge}; }

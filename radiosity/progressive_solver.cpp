@@ -105,6 +105,24 @@ double EnergyLedger::residual() const {
   return worst;
 }
 
+int sampleCount(const PatchMesh& mesh, int patch, const SolverOptions& options) {
+  const Patch& p = mesh.patches[patch];
+  bool emits = false;
+  for (int e : p.elements) emits = emits || luminance(mesh.emission(e)) > 0;
+  if (emits) return options.emitterSamples;
+  if (options.proximitySamples <= 0) return options.shooterSamples;
+  // The nearest element of another plane that faces the patch (occlusion ignored).
+  double nearest = HUGE_VAL;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    glm::dvec3 d = mesh.centroid(e) - p.centroid;
+    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, mesh.normal(e)) >= 0) continue;
+    nearest = std::min(nearest, glm::length(d));
+  }
+  double ratio = p.diameter / nearest;
+  double wanted = std::ceil(options.proximitySamples * ratio * ratio - 1e-9);
+  return int(std::clamp(wanted, double(options.shooterSamples), double(options.emitterSamples)));
+}
+
 bool isGrey(const PatchMesh& mesh) {
   auto same = [](const glm::dvec3& v) { return v.x == v.y && v.y == v.z; };
   for (int e = 0; e < mesh.elementCount(); ++e)
@@ -275,10 +293,7 @@ static size_t rowBytes(const FormFactors& f) {
 void ProgressiveSolver::shoot(int patch) {
   const Patch& p = mesh_.patches[patch];
   if (samples_[patch].empty()) {
-    bool emits = false;
-    for (int e : p.elements) emits = emits || luminance(mesh_.emission(e)) > 0;
-    samples_[patch] = patchSamples(mesh_, patch,
-                                   emits ? options_.emitterSamples : options_.shooterSamples);
+    samples_[patch] = patchSamples(mesh_, patch, sampleCount(mesh_, patch, options_));
   }
   // The power each element sends (ω times its unshot power) is fixed before any sample shoots.
   const double omega = options_.overshoot;

@@ -65,6 +65,7 @@ struct SolverOptions {
   double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
   int emitterSamples = 64;   ///< at least this many points on an emitting patch
   int shooterSamples = 4;    ///< at least this many points on any other patch
+  double proximitySamples = 0;  ///< more points on patches near other surfaces (sampleCount)
   /// Memory for keeping each sample's form factors after its first shot, so that a patch
   /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
   /// A fixed budget, whatever the scene size; 0 recomputes every time.
@@ -139,6 +140,13 @@ class ProgressiveSolver {
   bool grey_ = false;
   long hemicubes_ = 0;
 };
+
+/// How many points patch `patch` shoots from: options.emitterSamples on an emitter; otherwise
+/// options.shooterSamples, raised to proximitySamples·(D/d)² (at most emitterSamples), D the
+/// patch's diameter and d the distance from its centroid to the nearest element of another
+/// plane facing it: the proximity error of point shooters falls as the square of the points'
+/// spacing (oracles.md §3).
+int sampleCount(const PatchMesh& mesh, int patch, const SolverOptions& options);
 
 /// True when every element's reflectance and emission are the same in all three channels:
 /// one channel then carries the whole solution.

@@ -29,9 +29,7 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
   auto work = [&](int worker, int stride) {
     FormFactors ff;
     for (int p = worker; p < int(mesh.patches.size()); p += stride) {
-      bool emits = false;
-      for (int e : mesh.patches[p].elements) emits = emits || luminance(mesh.emission(e)) > 0;
-      auto samples = patchSamples(mesh, p, emits ? options.emitterSamples : options.shooterSamples);
+      auto samples = patchSamples(mesh, p, sampleCount(mesh, p, options));
       for (int index = 0; index < int(samples.size()); ++index) {
         const ShooterSample& s = samples[index];
         factors.factors(p, index, s, ff, worker);

@@ -22,7 +22,7 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
 void addSolverFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--hemicube", flags.hemicubeResolution,
                  "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
-                 "default 256)")
+                 "default 128)")
       ->check(CLI::Range(2, 8192))
       ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
@@ -30,8 +30,12 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
                  "Shooting points on each emitting patch, at least (solver.emitter_samples; default 64)")
       ->check(CLI::Range(1, 65536));
   app.add_option("--shooter-samples", flags.shooterSamples,
-                 "Shooting points on each other patch, at least (solver.shooter_samples; default 4)")
+                 "Shooting points on each other patch, at least (solver.shooter_samples; default 1)")
       ->check(CLI::Range(1, 65536));
+  app.add_option("--proximity-samples", flags.proximitySamples,
+                 "More shooting points near other surfaces: k·(D/d)² for a patch of diameter D "
+                 "whose nearest facing element lies d away (solver.proximity_samples; default 0.7)")
+      ->check(CLI::Range(0.0, 65536.0));
   app.add_option("--factor-cache-mb", flags.factorCacheMb,
                  "Memory for reusing a patch's form factors when it shoots again, MiB "
                  "(solver.factor_cache_mb; default 256; 0: recompute)")
@@ -58,6 +62,7 @@ SolverOptions solverOptions(const Settings& settings) {
   options.overshoot = settings.overshoot;
   options.emitterSamples = settings.emitterSamples;
   options.shooterSamples = settings.shooterSamples;
+  options.proximitySamples = settings.proximitySamples;
   options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
   return options;
 }

@@ -121,6 +121,7 @@ void runSolve(const SolveOptions& o) {
   s["overshoot"] = settings.overshoot;
   s["emitter_samples"] = options.emitterSamples;
   s["shooter_samples"] = options.shooterSamples;
+  s["proximity_samples"] = options.proximitySamples;
   s["factor_cache_mb"] = settings.factorCacheMb;
   report["settings"] = s;
   Json counts;
