@@ -361,12 +361,41 @@ std::vector<Piece> planarPieces(const Scene& scene, PointTable& table,
   return pieces;
 }
 
-/// The largest distance between two of the points.
-double diameter(const PointTable& table, const std::vector<int>& ids) {
+/// The corners of the convex hull of the points (ids), which all lie in `frame`'s plane:
+/// Andrew's monotone chain on their projections.
+std::vector<int> convexHull(const PointTable& table, const PlaneFrame& frame, std::vector<int> ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (ids.size() < 3) return ids;
+  std::vector<std::pair<glm::dvec2, int>> pts;
+  for (int id : ids) pts.push_back({frame.project(table[id]), id});
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
+    return std::make_pair(a.first.x, a.first.y) < std::make_pair(b.first.x, b.first.y);
+  });
+  auto turn = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<std::pair<glm::dvec2, int>> hull(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {  // lower chain
+    while (k >= 2 && turn(hull[k - 2].first, hull[k - 1].first, pts[i].first) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && turn(hull[k - 2].first, hull[k - 1].first, pts[i].first) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  std::vector<int> out;
+  for (size_t i = 0; i + 1 < k; ++i) out.push_back(hull[i].second);
+  return out;
+}
+
+/// The largest distance between two of the points (ids): between two hull corners.
+double diameter(const PointTable& table, const std::vector<int>& hull) {
   double widest = 0;
-  for (size_t i = 0; i < ids.size(); ++i)
-    for (size_t j = i + 1; j < ids.size(); ++j)
-      widest = std::max(widest, glm::length(table[ids[i]] - table[ids[j]]));
+  for (size_t i = 0; i < hull.size(); ++i)
+    for (size_t j = i + 1; j < hull.size(); ++j)
+      widest = std::max(widest, glm::length(table[hull[i]] - table[hull[j]]));
   return widest;
 }
 
@@ -400,7 +429,7 @@ std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFr
   std::vector<bool> taken(n, false);
   for (int seed : order) {
     if (taken[seed]) continue;
-    std::vector<int> patch, points;
+    std::vector<int> patch, hull;  // the patch's triangles and the corners of its convex hull
     using Candidate = std::pair<double, int>;  // distance to the seed, triangle
     std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> frontier;
     std::set<int> queued{seed};
@@ -408,13 +437,16 @@ std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFr
     while (!frontier.empty()) {
       int k = frontier.top().second;
       frontier.pop();
+      // The patch stays no wider than maxDiameter iff the new corners are within it of every
+      // point of the patch, that is of every hull corner.
       bool fits = true;
       for (int v : triangles[k])
-        for (int q : points) fits = fits && glm::length(table[v] - table[q]) <= maxDiameter;
+        for (int q : hull) fits = fits && glm::length(table[v] - table[q]) <= maxDiameter;
       if (!fits) continue;
       taken[k] = true;
       patch.push_back(k);
-      points.insert(points.end(), triangles[k].begin(), triangles[k].end());
+      hull.insert(hull.end(), triangles[k].begin(), triangles[k].end());
+      hull = convexHull(table, frame, std::move(hull));
       for (int m : neighbours[k])
         if (!taken[m] && queued.insert(m).second)
           frontier.push({glm::length(centre[m] - centre[seed]), m});
@@ -537,7 +569,7 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
           if (patch.elements.empty()) continue;
           patch.centroid /= patch.area;
           patch.normal = normal;
-          patch.diameter = diameter(table, patchPoints);
+          patch.diameter = diameter(table, convexHull(table, pieces[piece].frame, patchPoints));
           out.stats.maxPatchDiameter = std::max(out.stats.maxPatchDiameter, patch.diameter);
           if (side == 0) out.surfaces[s].area += patch.area;
           out.surfaces[s].elements += int(patch.elements.size());
