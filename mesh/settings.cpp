@@ -20,7 +20,7 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.exposure = flags.exposure ? flags.exposure : file.exposure;
-  s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, 64);
+  s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, kDefaultEmitterSamples);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
   s.proximitySamples =
       pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);

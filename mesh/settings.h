@@ -22,6 +22,7 @@ constexpr double kDefaultFactorCacheMb = 256;
 /// 0.41 s; R = 256 with 4 points on every patch was within 2.8 % in 0.58 s.
 constexpr int kDefaultHemicubeResolution = 128;
 constexpr int kDefaultShooterSamples = 1;
+constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
@@ -35,7 +36,7 @@ struct Settings {
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = kDefaultOvershoot;  ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
-  int emitterSamples = 64;   ///< at least this many shooting points on an emitting patch
+  int emitterSamples = kDefaultEmitterSamples;  ///< shooting points on an emitting patch
   int shooterSamples = 1;    ///< on any other patch
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors

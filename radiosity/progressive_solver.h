@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/color.h"
+#include "mesh/settings.h"
 #include "radiosity/hemicube.h"
 
 namespace rad {
@@ -58,14 +59,16 @@ struct EnergyLedger {
   double residual() const;
 };
 
+/// The defaults are the command line's (mesh/settings.h), except ω: plain shooting here.
 struct SolverOptions {
   double tolerance = 1e-3;   ///< stop when unshot/emitted power (luminance) falls below
   long maxShots = 0;         ///< 0: no limit
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
-  int emitterSamples = 64;   ///< at least this many points on an emitting patch
-  int shooterSamples = 4;    ///< at least this many points on any other patch
-  double proximitySamples = 0;  ///< more points on patches near other surfaces (sampleCount)
+  int emitterSamples = kDefaultEmitterSamples;  ///< points on an emitting patch
+  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
+  /// More points on patches near other surfaces (sampleCount).
+  double proximitySamples = kDefaultProximitySamples;
   /// Memory for keeping each sample's form factors after its first shot, so that a patch
   /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
   /// A fixed budget, whatever the scene size; 0 recomputes every time.

@@ -336,6 +336,67 @@ TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
 }
 
 
+/// Kept factors are the factors a hemicube would render again (same point, same rotation):
+/// the solution is bit for bit the same with or without the cache, for far fewer hemicubes;
+/// a budget too small for every row keeps some and renders the rest again.
+TEST(FactorCacheTest, SameResultWithFewerHemicubes) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh mesh = buildPatchMesh(scene, {110, 220});
+  HemicubeFactors factors(mesh, 64, scene.diagonal(), 5);
+  std::vector<std::vector<glm::dvec3>> results;
+  std::vector<long> hemicubes;
+  for (size_t budget : {size_t(0), size_t(200) << 10, size_t(256) << 20}) {
+    SolverOptions options;
+    options.maxShots = 400;
+    options.factorCacheBytes = budget;
+    ProgressiveSolver solver(mesh, factors, options);
+    solver.run();
+    EXPECT_LE(solver.cachedBytes(), budget);
+    results.push_back(solver.radiosity());
+    hemicubes.push_back(solver.hemicubes());
+  }
+  EXPECT_EQ(results[0], results[1]);
+  EXPECT_EQ(results[0], results[2]);
+  EXPECT_GT(hemicubes[0], hemicubes[1]);
+  EXPECT_GT(hemicubes[1], hemicubes[2]);
+  EXPECT_LT(3 * hemicubes[2], hemicubes[0]);  // a patch shoots several times
+}
+
+/// Emitters shoot from emitterSamples points; other patches from shooterSamples, more the
+/// nearer they are to a facing surface: (D/d)² grows with proximity.
+TEST(SamplesTest, MorePointsNearOtherSurfaces) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh mesh = buildPatchMesh(scene, {50, 150});
+  SolverOptions options;
+  options.shooterSamples = 1;
+  options.proximitySamples = 0.7;
+  int nearCorner = 0, midWall = 0, lights = 0;
+  for (int p = 0; p < int(mesh.patches.size()); ++p) {
+    const Patch& patch = mesh.patches[p];
+    int count = sampleCount(mesh, p, options);
+    EXPECT_GE(count, options.shooterSamples);
+    EXPECT_LE(count, options.emitterSamples);
+    if (luminance(mesh.emission(patch.elements[0])) > 0) {
+      EXPECT_EQ(count, options.emitterSamples);
+      ++lights;
+      continue;
+    }
+    if (scene.surfaces[patch.surface].name != "back_wall") continue;
+    // The back wall spans x, y in [0, 556]: patches at a corner touch two other walls.
+    const glm::dvec3& c = patch.centroid;
+    double edgeDistance = std::min({c.x, 556 - c.x, c.y, 549 - c.y});
+    if (edgeDistance < 60) nearCorner = std::max(nearCorner, count);
+    if (edgeDistance > 200) midWall = std::max(midWall, count);
+  }
+  EXPECT_GT(lights, 0);
+  EXPECT_GE(nearCorner, 4);
+  EXPECT_LE(midWall, 2);
+  options.proximitySamples = 0;
+  for (int p = 0; p < int(mesh.patches.size()); p += 5)
+    if (luminance(mesh.emission(mesh.patches[p].elements[0])) == 0)
+      EXPECT_EQ(sampleCount(mesh, p, options), 1);
+}
+
 TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
   Scene scene = loadScene(kScenes + "cornell.json");
   PatchMesh mesh = buildPatchMesh(scene, {110, 220});
