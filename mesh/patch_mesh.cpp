@@ -437,11 +437,15 @@ std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFr
     while (!frontier.empty()) {
       int k = frontier.top().second;
       frontier.pop();
-      // The patch stays no wider than maxDiameter iff the new corners are within it of every
-      // point of the patch, that is of every hull corner.
+      // The patch stays no wider than maxDiameter iff the new corners are within it of each
+      // other and of every point of the patch, that is of every hull corner. (The seed always
+      // fits: a patch is at least one element, however wide.)
       bool fits = true;
-      for (int v : triangles[k])
+      for (int v : triangles[k]) {
         for (int q : hull) fits = fits && glm::length(table[v] - table[q]) <= maxDiameter;
+        if (!hull.empty())
+          for (int w : triangles[k]) fits = fits && glm::length(table[v] - table[w]) <= maxDiameter;
+      }
       if (!fits) continue;
       taken[k] = true;
       patch.push_back(k);

@@ -32,7 +32,7 @@ struct Patch {
   std::vector<int> elements;   ///< face indices
   double area = 0;
   glm::dvec3 centroid{0.0};    ///< area-weighted
-  glm::dvec3 normal{0.0};      ///< area-weighted mean, unit
+  glm::dvec3 normal{0.0};      ///< its plane's unit normal, towards the lit side
   double diameter = 0;         ///< largest distance between two of its points
 };
 

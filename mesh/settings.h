@@ -37,7 +37,7 @@ struct Settings {
   double overshoot = kDefaultOvershoot;  ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
   int emitterSamples = kDefaultEmitterSamples;  ///< shooting points on an emitting patch
-  int shooterSamples = 1;    ///< on any other patch
+  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
 

@@ -204,7 +204,7 @@ void Hemicube::accumulate(FormFactors& out) {
 #if defined(__SSE2__)
     // Neighbouring pixels mostly see the same element: while four pixels at a time continue
     // the current run, sum them in two independent partial sums; a chunk where the run ends
-    // flushes the run and adds its own pixels one by one (no branch per pixel).
+    // flushes the run and adds its own pixels one by one.
     uint32_t run = item[0];
     __m128d part0 = _mm_setzero_pd(), part1 = _mm_setzero_pd();
     auto flush = [&] {
@@ -228,8 +228,20 @@ void Hemicube::accumulate(FormFactors& out) {
       runs = _mm_set1_epi32(int(run));
     }
     flush();
+    for (; k < count; ++k) add(item[k], delta[k]);  // the last 0-3 pixels
+#else
+    uint32_t run = item[0];
+    double sum = 0;
+    for (; k < count; ++k) {
+      if (item[k] != run) {
+        add(run, sum);
+        run = item[k];
+        sum = 0;
+      }
+      sum += delta[k];
+    }
+    add(run, sum);
 #endif
-    for (; k < count; ++k) add(item[k], delta[k]);
   }
   out.sky = acc[skySlot];
   out.backFaces = acc[backSlot];

@@ -24,7 +24,7 @@ struct Part {
   std::array<glm::dvec3, 3> corners;
 };
 
-/// Cuts triangle (a, b, c) into m² congruent triangles (each edge into m equal pieces).
+/// Cuts triangle t into m² congruent triangles (each edge into m equal pieces).
 void subdivide(int element, const std::array<glm::dvec3, 3>& t, int m, std::vector<Part>& out) {
   const glm::dvec3 u = (t[1] - t[0]) / double(m), v = (t[2] - t[0]) / double(m);
   const double area = 0.5 * glm::length(glm::cross(u, v)), share = 1.0 / double(m * m);
@@ -61,11 +61,15 @@ void bisectByArea(std::vector<Part> parts, int strata, std::vector<std::vector<P
   for (const Part& p : parts) total += p.area;
   const int first = strata / 2;
   const double target = total * first / strata;
-  size_t cut = 1;  // at least one part on each side
-  double running = parts[0].area, best = std::abs(running - target);
-  for (size_t i = 1; i + 1 < parts.size(); ++i) {
+  // Each side keeps at least as many parts as strata it must make, where it can.
+  const size_t lowest = std::min<size_t>(first, parts.size() - 1);
+  const size_t highest = std::max<size_t>(lowest, parts.size() - std::min<size_t>(strata - first, parts.size() - 1));
+  size_t cut = lowest;
+  double running = 0, best = HUGE_VAL;
+  for (size_t i = 0; i < parts.size(); ++i) {
     running += parts[i].area;
-    if (std::abs(running - target) < best) best = std::abs(running - target), cut = i + 1;
+    if (i + 1 >= lowest && i + 1 <= highest && std::abs(running - target) < best)
+      best = std::abs(running - target), cut = i + 1;
   }
   std::vector<Part> tail(parts.begin() + long(cut), parts.end());
   parts.resize(cut);
@@ -105,22 +109,53 @@ double EnergyLedger::residual() const {
   return worst;
 }
 
-int sampleCount(const PatchMesh& mesh, int patch, const SolverOptions& options) {
-  const Patch& p = mesh.patches[patch];
+SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options)
+    : mesh_(mesh), options_(options) {
+  if (options.proximitySamples <= 0 || mesh.patches.empty()) return;
+  double sum = 0;
+  for (const Patch& p : mesh.patches) sum += p.diameter;
+  cell_ = std::max(sum / double(mesh.patches.size()), 1e-300);
+  for (int e = 0; e < mesh.elementCount(); ++e) grid_[key(cellOf(mesh.centroid(e)))].push_back(e);
+}
+
+std::array<int64_t, 3> SampleCounter::cellOf(const glm::dvec3& p) const {
+  return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)),
+          int64_t(std::floor(p.z / cell_))};
+}
+
+uint64_t SampleCounter::key(const std::array<int64_t, 3>& c) {
+  return uint64_t(c[0]) * 73856093u ^ uint64_t(c[1]) * 19349663u ^ uint64_t(c[2]) * 83492791u;
+}
+
+int SampleCounter::operator()(int patch) const {
+  const Patch& p = mesh_.patches[patch];
   bool emits = false;
-  for (int e : p.elements) emits = emits || luminance(mesh.emission(e)) > 0;
-  if (emits) return options.emitterSamples;
-  if (options.proximitySamples <= 0) return options.shooterSamples;
-  // The nearest element of another plane that faces the patch (occlusion ignored).
+  for (int e : p.elements) emits = emits || luminance(mesh_.emission(e)) > 0;
+  if (emits) return options_.emitterSamples;
+  const int fewest = options_.shooterSamples;
+  const int most = std::max(fewest, options_.emitterSamples);
+  if (options_.proximitySamples <= 0) return fewest;
+  // Only elements nearer than D·√(k / fewest) ask for more than the fewest points.
+  const double reach = p.diameter * std::sqrt(options_.proximitySamples / fewest);
   double nearest = HUGE_VAL;
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    glm::dvec3 d = mesh.centroid(e) - p.centroid;
-    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, mesh.normal(e)) >= 0) continue;
-    nearest = std::min(nearest, glm::length(d));
-  }
-  double ratio = p.diameter / nearest;
-  double wanted = std::ceil(options.proximitySamples * ratio * ratio - 1e-9);
-  return int(std::clamp(wanted, double(options.shooterSamples), double(options.emitterSamples)));
+  const auto lo = cellOf(p.centroid - glm::dvec3(reach)), hi = cellOf(p.centroid + glm::dvec3(reach));
+  for (int64_t x = lo[0]; x <= hi[0]; ++x)
+    for (int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+        auto it = grid_.find(key({x, y, z}));
+        if (it == grid_.end()) continue;
+        for (int e : it->second) {
+          // An element of another plane facing the patch (occlusion ignored); hash
+          // collisions only bring elements that fail the distance test.
+          glm::dvec3 d = mesh_.centroid(e) - p.centroid;
+          if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, mesh_.normal(e)) >= 0) continue;
+          nearest = std::min(nearest, glm::length(d));
+        }
+      }
+  if (!(nearest < reach)) return fewest;
+  const double ratio = p.diameter / nearest;
+  const double wanted = std::ceil(options_.proximitySamples * ratio * ratio - 1e-9);
+  return int(std::min<double>(std::max<double>(wanted, fewest), most));
 }
 
 bool isGrey(const PatchMesh& mesh) {
@@ -180,7 +215,8 @@ void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,
 
 ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,
                                      const SolverOptions& options)
-    : mesh_(mesh), factors_(factors), options_(options), start_(std::chrono::steady_clock::now()) {
+    : mesh_(mesh), factors_(factors), options_(options), counter_(mesh, options),
+      start_(std::chrono::steady_clock::now()) {
   const int n = mesh.elementCount();
   B_.resize(n);
   dB_.resize(n);
@@ -284,16 +320,50 @@ void ProgressiveSolver::computeFactors(int patch, const std::vector<glm::dvec3>&
   hemicubes_ += long(todo.size());
 }
 
-/// Bytes one cached row takes.
-static size_t rowBytes(const FormFactors& f) {
+namespace {
+
+/// Bytes one cached row takes (the per-patch arrays of rows are not counted: a few bytes per
+/// sample).
+size_t rowBytes(const FormFactors& f) {
   return sizeof(FormFactors) + f.elements.capacity() * sizeof(int) +
          f.factors.capacity() * sizeof(double);
+}
+
+/// One channel of a triple (a grey scene's r stands for all three), or the triple itself.
+template <class T>
+T channels(const glm::dvec3& v);
+template <>
+double channels<double>(const glm::dvec3& v) { return v.x; }
+template <>
+glm::dvec3 channels<glm::dvec3>(const glm::dvec3& v) { return v; }
+
+}  // namespace
+
+template <class T>
+glm::dvec3 ProgressiveSolver::deliver(const glm::dvec3& power, const FormFactors& row) {
+  const T sent = channels<T>(power);
+  T arrived(0.0), absorbed(0.0);
+  for (size_t k = 0; k < row.elements.size(); ++k) {
+    const int j = row.elements[k];
+    const T arriving = sent * row.factors[k];
+    const T reflected = channels<T>(rho_[j]) * arriving;  // ρⱼ·ΔBᵢ·Fᵢⱼ·Aᵢ/Aⱼ per unit area of j
+    arrived += arriving;
+    absorbed += arriving - reflected;
+    if (reflected == T(0.0)) continue;  // black elements only absorb
+    const glm::dvec3 dB(reflected / area_[j]);
+    B_[j] += dB;
+    dB_[j] += dB;
+    const int q = patchOf_[j];
+    setPatchUnshot(q, patchUnshot_[q] + glm::dvec3(reflected));
+  }
+  ledger_.absorbed += glm::dvec3(absorbed);
+  return glm::dvec3(arrived);
 }
 
 void ProgressiveSolver::shoot(int patch) {
   const Patch& p = mesh_.patches[patch];
   if (samples_[patch].empty()) {
-    samples_[patch] = patchSamples(mesh_, patch, sampleCount(mesh_, patch, options_));
+    samples_[patch] = patchSamples(mesh_, patch, counter_(patch));
   }
   // The power each element sends (ω times its unshot power) is fixed before any sample shoots.
   const double omega = options_.overshoot;
@@ -314,38 +384,8 @@ void ProgressiveSolver::shoot(int patch) {
   for (size_t index = 0; index < samples.size(); ++index) {
     const glm::dvec3& power = powers[index];
     if (power == glm::dvec3(0.0)) continue;
-    const FormFactors& ff_ = rows[index].factors;
-    glm::dvec3 delivered(0.0);
-    if (grey_) {  // one channel, copied
-      double sent = 0, kept = 0;
-      for (size_t k = 0; k < ff_.elements.size(); ++k) {
-        int j = ff_.elements[k];
-        double arriving = power.x * ff_.factors[k], reflected = rho_[j].x * arriving;
-        sent += arriving;
-        kept += arriving - reflected;
-        if (reflected == 0) continue;
-        double dB = reflected / area_[j];
-        B_[j] += dB;
-        dB_[j] += dB;
-        int q = patchOf_[j];
-        setPatchUnshot(q, patchUnshot_[q] + reflected);
-      }
-      delivered = glm::dvec3(sent);
-      ledger_.absorbed += glm::dvec3(kept);
-    }
-    for (size_t k = 0; k < (grey_ ? 0 : ff_.elements.size()); ++k) {
-      int j = ff_.elements[k];
-      glm::dvec3 arriving = power * ff_.factors[k];
-      glm::dvec3 reflected = rho_[j] * arriving;  // ρⱼ·ΔBᵢ·Fᵢⱼ·Aᵢ/Aⱼ per unit area of j
-      delivered += arriving;
-      ledger_.absorbed += arriving - reflected;
-      if (reflected == glm::dvec3(0.0)) continue;  // black elements only absorb
-      glm::dvec3 dB = reflected / area_[j];
-      B_[j] += dB;
-      dB_[j] += dB;
-      int q = patchOf_[j];
-      setPatchUnshot(q, patchUnshot_[q] + reflected);
-    }
+    const FormFactors& row = rows[index].factors;
+    glm::dvec3 delivered = grey_ ? deliver<double>(power, row) : deliver<glm::dvec3>(power, row);
     // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
     ledger_.escaped += power - delivered;
     powerShot_ += std::abs(luminance(power));
@@ -353,6 +393,8 @@ void ProgressiveSolver::shoot(int patch) {
   // Keep the new rows while the budget allows; otherwise let them go.
   for (size_t index = 0; index < rows.size(); ++index) {
     if (wasReady[index] || !rows[index].ready) continue;
+    rows[index].factors.elements.shrink_to_fit();
+    rows[index].factors.factors.shrink_to_fit();
     size_t bytes = rowBytes(rows[index].factors);
     if (cachedBytes_ + bytes <= options_.factorCacheBytes) {
       cachedBytes_ += bytes;

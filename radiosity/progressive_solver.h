@@ -1,8 +1,11 @@
 #pragma once
 // Progressive refinement radiosity (Cohen, Chen, Wallace & Greenberg 1988): patches shoot
 // their unshot power, elements receive, with an energy ledger kept after every shot.
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -72,7 +75,27 @@ struct SolverOptions {
   /// Memory for keeping each sample's form factors after its first shot, so that a patch
   /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
   /// A fixed budget, whatever the scene size; 0 recomputes every time.
-  size_t factorCacheBytes = size_t(256) << 20;
+  size_t factorCacheBytes = size_t(kDefaultFactorCacheMb * 1024 * 1024);
+};
+
+/// How many points a patch shoots from: options.emitterSamples on an emitter; otherwise
+/// options.shooterSamples, raised to proximitySamples·(D/d)² (at most emitterSamples), D the
+/// patch's diameter and d the distance from its centroid to the nearest element of another
+/// plane facing it: the proximity error of point shooters falls as the square of the points'
+/// spacing (oracles.md §3). Element centroids sit in a grid, so only nearby ones are visited.
+class SampleCounter {
+ public:
+  SampleCounter(const PatchMesh& mesh, const SolverOptions& options);
+  int operator()(int patch) const;
+
+ private:
+  std::array<int64_t, 3> cellOf(const glm::dvec3& p) const;
+  static uint64_t key(const std::array<int64_t, 3>& cell);
+
+  const PatchMesh& mesh_;
+  SolverOptions options_;
+  double cell_ = 1;
+  std::unordered_map<uint64_t, std::vector<int>> grid_;
 };
 
 class ProgressiveSolver {
@@ -116,10 +139,15 @@ class ProgressiveSolver {
   /// Makes sure rows_[patch][i] holds sample i's factors for every sample with power.
   void computeFactors(int patch, const std::vector<glm::dvec3>& powers);
   void setPatchUnshot(int patch, const glm::dvec3& power);
+  /// Delivers `power` through one sample's factors to the elements it sees and returns the
+  /// power that arrived. T: double in a grey scene (channel r stands for all), else dvec3.
+  template <class T>
+  glm::dvec3 deliver(const glm::dvec3& power, const FormFactors& row);
 
   const PatchMesh& mesh_;
   FactorSource& factors_;
   SolverOptions options_;
+  SampleCounter counter_;
   std::vector<std::vector<ShooterSample>> samples_;
   std::vector<glm::dvec3> B_, dB_, rho_;
   std::vector<double> area_;
@@ -144,19 +172,12 @@ class ProgressiveSolver {
   long hemicubes_ = 0;
 };
 
-/// How many points patch `patch` shoots from: options.emitterSamples on an emitter; otherwise
-/// options.shooterSamples, raised to proximitySamples·(D/d)² (at most emitterSamples), D the
-/// patch's diameter and d the distance from its centroid to the nearest element of another
-/// plane facing it: the proximity error of point shooters falls as the square of the points'
-/// spacing (oracles.md §3).
-int sampleCount(const PatchMesh& mesh, int patch, const SolverOptions& options);
 
 /// True when every element's reflectance and emission are the same in all three channels:
 /// one channel then carries the whole solution.
 bool isGrey(const PatchMesh& mesh);
 
-/// `count` stratified samples over a patch (fewer only if the patch has fewer elements and
-/// count is 1). Each element is cut into m×m congruent triangles, m chosen so that the patch
+/// `count` stratified samples over a patch. Each element is cut into m×m congruent triangles, m chosen so that the patch
 /// has at least `count` parts spread by area; the parts are split into `count` strata of
 /// about equal area by recursive bisection, and each stratum shoots its parts' shares of
 /// their elements' power from its centroid. Each element's weights sum to 1.

@@ -25,11 +25,12 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
     rho_[e] = mesh.reflectance(e);
     E_[e] = mesh.emission(e);
   }
+  const SampleCounter count(mesh, options);
   // Workers take patches round-robin; a patch writes only its own elements' columns.
   auto work = [&](int worker, int stride) {
     FormFactors ff;
     for (int p = worker; p < int(mesh.patches.size()); p += stride) {
-      auto samples = patchSamples(mesh, p, sampleCount(mesh, p, options));
+      auto samples = patchSamples(mesh, p, count(p));
       for (int index = 0; index < int(samples.size()); ++index) {
         const ShooterSample& s = samples[index];
         factors.factors(p, index, s, ff, worker);
@@ -53,8 +54,7 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
 std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
   const int n = size();
   std::vector<glm::dvec3> B(n);
-  const bool grey = grey_;
-  for (int c = 0; c < (grey ? 1 : 3); ++c) {
+  for (int c = 0; c < (grey_ ? 1 : 3); ++c) {
     Eigen::MatrixXd A = -G_;
     Eigen::VectorXd rhs(n);
     for (int j = 0; j < n; ++j) {
@@ -65,7 +65,7 @@ std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
     Eigen::VectorXd x = A.partialPivLu().solve(rhs);
     for (int j = 0; j < n; ++j) B[j][c] = x(j);
   }
-  if (grey)
+  if (grey_)
     for (auto& b : B) b = glm::dvec3(b.x);
   return B;
 }

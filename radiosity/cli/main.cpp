@@ -27,7 +27,7 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
       ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
   app.add_option("--emitter-samples", flags.emitterSamples,
-                 "Shooting points on each emitting patch, at least (solver.emitter_samples; default 64)")
+                 "Shooting points on each emitting patch (solver.emitter_samples; default 64)")
       ->check(CLI::Range(1, 65536));
   app.add_option("--shooter-samples", flags.shooterSamples,
                  "Shooting points on each other patch, at least (solver.shooter_samples; default 1)")
