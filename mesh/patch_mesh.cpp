@@ -18,6 +18,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/contact_cutter.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "mesh/polygon_mesher.h"
@@ -27,6 +28,8 @@ namespace {
 
 /// Points on a boundary closer than this times the scene diagonal to an edge lie on it.
 constexpr double kOnEdgeTolerance = 1e-7;
+/// Surfaces closer than this times the scene diagonal touch.
+constexpr double kContactTolerance = 1e-5;
 /// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
 constexpr int kMaxAgreementRounds = 200;
 
@@ -54,11 +57,13 @@ class PointTable {
   std::unordered_map<Key, int, Hash> index_;
 };
 
-/// A planar polygon with holes whose ring points are ids in a PointTable.
+/// A planar polygon with holes whose ring points are ids in a PointTable, and the contact
+/// lines inside it that meshing keeps as element edges.
 struct Piece {
   int surface = -1;
   PlaneFrame frame;
   std::vector<std::vector<int>> rings;
+  std::vector<std::array<int, 2>> lines;
 };
 
 /// A uniform grid over point ids, to find the points near a segment.
@@ -156,8 +161,10 @@ class PieceMesher {
   /// no longer than maxEdge.
   void cutBoundaries() {
     std::vector<int> corners;
-    for (const auto& piece : pieces_)
+    for (const auto& piece : pieces_) {
       for (const auto& ring : piece.rings) corners.insert(corners.end(), ring.begin(), ring.end());
+      for (const auto& line : piece.lines) corners.insert(corners.end(), line.begin(), line.end());
+    }
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     PointGrid grid(table_, corners);
@@ -167,6 +174,13 @@ class PieceMesher {
         std::vector<ChainEdge> chain;
         for (size_t k = 0; k < ring.size(); ++k)
           cutEdge(int(p), ring[k], ring[(k + 1) % ring.size()], grid, chain);
+        chains_[p].push_back(std::move(chain));
+      }
+    // Lines after the rings, as open chains.
+    for (size_t p = 0; p < pieces_.size(); ++p)
+      for (const auto& line : pieces_[p].lines) {
+        std::vector<ChainEdge> chain;
+        cutEdge(int(p), line[0], line[1], grid, chain);
         chains_[p].push_back(std::move(chain));
       }
   }
@@ -208,23 +222,30 @@ class PieceMesher {
     return it->second;
   }
 
-  /// The boundary of piece p as point ids, ring by ring, and for each boundary point the
-  /// chain edge it starts.
+  /// The boundary of piece p as point ids, ring by ring and then line by line (lines with
+  /// their last point too), and for each point the chain edge it starts.
   void boundary(int p, std::vector<std::vector<int>>& ids,
                 std::vector<std::vector<int>>& edgeOf) {
-    for (const auto& chain : chains_[p]) {
-      std::vector<int> ring, edges;
+    const size_t rings = pieces_[p].rings.size();
+    for (size_t c = 0; c < chains_[p].size(); ++c) {
+      const auto& chain = chains_[p][c];
+      std::vector<int> points, edges;
       for (size_t k = 0; k < chain.size(); ++k) {
         const Segment& s = segments_[chain[k].segment];
-        ring.push_back(chain[k].forward ? s.a : s.b);
+        points.push_back(chain[k].forward ? s.a : s.b);
         edges.push_back(int(k));
         for (size_t j = 0; j < s.t.size(); ++j) {
           double t = chain[k].forward ? s.t[j] : s.t[s.t.size() - 1 - j];
-          ring.push_back(table_.id(pointOn(s, t)));
+          points.push_back(table_.id(pointOn(s, t)));
           edges.push_back(int(k));
         }
       }
-      ids.push_back(std::move(ring));
+      if (c >= rings && !chain.empty()) {  // an open line ends at its last point
+        const Segment& s = segments_[chain.back().segment];
+        points.push_back(chain.back().forward ? s.b : s.a);
+        edges.push_back(int(chain.size()) - 1);
+      }
+      ids.push_back(std::move(points));
       edgeOf.push_back(std::move(edges));
     }
   }
@@ -233,12 +254,13 @@ class PieceMesher {
     const Piece& piece = pieces_[p];
     std::vector<std::vector<int>> ids, edgeOf;
     boundary(p, ids, edgeOf);
+    const size_t rings = piece.rings.size();
     Polygon2 poly;
-    poly.ids = ids;
-    for (const auto& ring : ids) {
+    for (size_t c = 0; c < ids.size(); ++c) {
       std::vector<glm::dvec2> pts;
-      for (int id : ring) pts.push_back(piece.frame.project(table_[id]));
-      poly.rings.push_back(std::move(pts));
+      for (int id : ids[c]) pts.push_back(piece.frame.project(table_[id]));
+      (c < rings ? poly.rings : poly.lines).push_back(std::move(pts));
+      (c < rings ? poly.ids : poly.lineIds).push_back(ids[c]);
     }
     Triangulation2 tri = meshPolygon(poly, maxEdge_, wheres_[p]);
     std::vector<int> global(tri.points.size());
@@ -257,23 +279,25 @@ class PieceMesher {
     for (const auto& t : tri.triangles) out.push_back({global[t[0]], global[t[1]], global[t[2]]});
   }
 
-  /// Registers a point the mesher put on piece p's boundary with the shared segment, and
-  /// marks the segment's other users for meshing again.
+  /// Registers a point the mesher put on piece p's boundary or on one of its lines with the
+  /// shared segment, and marks the segment's other users for meshing again.
   int addBoundaryPoint(int p, const Polygon2& poly, const std::vector<std::vector<int>>& edgeOf,
                        const glm::dvec2& q, std::vector<bool>& dirty) {
     double best = HUGE_VAL;
-    int bestRing = 0, bestK = 0;
-    for (size_t r = 0; r < poly.rings.size(); ++r) {
-      const auto& ring = poly.rings[r];
-      for (size_t k = 0; k < ring.size(); ++k) {
-        glm::dvec2 a = ring[k], b = ring[(k + 1) % ring.size()];
+    size_t bestChain = 0, bestK = 0;
+    const size_t rings = poly.rings.size();
+    for (size_t c = 0; c < rings + poly.lines.size(); ++c) {
+      const auto& pts = c < rings ? poly.rings[c] : poly.lines[c - rings];
+      const size_t edges = c < rings ? pts.size() : pts.size() - 1;
+      for (size_t k = 0; k < edges; ++k) {
+        glm::dvec2 a = pts[k], b = pts[(k + 1) % pts.size()];
         glm::dvec2 d = b - a;
         double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
         double dist = glm::length(a + d * t - q);
-        if (dist < best) best = dist, bestRing = int(r), bestK = int(k);
+        if (dist < best) best = dist, bestChain = c, bestK = k;
       }
     }
-    ChainEdge edge = chains_[p][bestRing][edgeOf[bestRing][bestK]];
+    ChainEdge edge = chains_[p][bestChain][size_t(edgeOf[bestChain][bestK])];
     Segment& s = segments_[edge.segment];
     glm::dvec3 x = pieces_[p].frame.lift(q), d = table_[s.b] - table_[s.a];
     double t = std::clamp(glm::dot(x - table_[s.a], d) / glm::dot(d, d), 1e-12, 1 - 1e-12);
@@ -460,6 +484,179 @@ std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFr
   return patches;
 }
 
+/// Where piece s meets the plane of piece r: the segment of s's polygon in r's plane (its
+/// extreme points along the line of the two planes), if s reaches r's lit side (either side
+/// when r is two-sided) and touches or pierces the plane within `tolerance`. Ends that are
+/// vertices of s keep their ids.
+struct Contact3 {
+  glm::dvec3 a, b;
+  int aId = -1, bId = -1;
+};
+bool contactOf(const PointTable& table, const Piece& r, bool rTwoSided, const Piece& s,
+               double tolerance, Contact3& out) {
+  const glm::dvec3 &nr = r.frame.normal, &ns = s.frame.normal;
+  if (std::abs(glm::dot(nr, ns)) > 1 - 1e-9) return false;  // parallel planes
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  std::vector<std::pair<glm::dvec3, int>> on;  // points of s in r's plane
+  for (const auto& ring : s.rings) {
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const glm::dvec3 &p = table[ring[k]], &q = table[ring[(k + 1) % ring.size()]];
+      const double dp = glm::dot(nr, p - r.frame.origin), dq = glm::dot(nr, q - r.frame.origin);
+      lo = std::min(lo, dp);
+      hi = std::max(hi, dp);
+      if (std::abs(dp) <= tolerance) on.push_back({p, ring[k]});
+      if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance))
+        on.push_back({p + (q - p) * (dp / (dp - dq)), -1});
+    }
+  }
+  const bool lit = hi > tolerance || (rTwoSided && lo < -tolerance);
+  if (!lit || lo > tolerance || hi < -tolerance || on.size() < 2) return false;
+  const glm::dvec3 along = glm::cross(nr, ns);
+  size_t first = 0, last = 0;
+  for (size_t i = 1; i < on.size(); ++i) {
+    if (glm::dot(along, on[i].first) < glm::dot(along, on[first].first)) first = i;
+    if (glm::dot(along, on[i].first) > glm::dot(along, on[last].first)) last = i;
+  }
+  if (glm::length(on[last].first - on[first].first) <= tolerance) return false;  // a point
+  out = {on[first].first, on[last].first, on[first].second, on[last].second};
+  return true;
+}
+
+/// Cuts every piece along the lines where other pieces touch or pierce it (a block standing
+/// on a floor, a wall meeting a floor, a box pushed into a wall) and leaves out what they
+/// enclose (cutAlongContacts). New points within `tolerance` of an existing one are merged
+/// with it, so that both pieces at a contact share their points. Records what was left out.
+void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces,
+                   std::vector<std::string>& wheres, double tolerance, PatchMesh& out) {
+  const size_t n = pieces.size();
+  // Pieces by bounding box, in a grid over the scene, to find the ones that may touch.
+  std::vector<glm::dvec3> lo(n, glm::dvec3(HUGE_VAL)), hi(n, glm::dvec3(-HUGE_VAL));
+  glm::dvec3 sceneLo(HUGE_VAL), sceneHi(-HUGE_VAL);
+  std::vector<int> points;
+  for (size_t p = 0; p < n; ++p)
+    for (const auto& ring : pieces[p].rings)
+      for (int id : ring) {
+        lo[p] = glm::min(lo[p], table[id] - tolerance);
+        hi[p] = glm::max(hi[p], table[id] + tolerance);
+        points.push_back(id);
+      }
+  for (size_t p = 0; p < n; ++p) sceneLo = glm::min(sceneLo, lo[p]), sceneHi = glm::max(sceneHi, hi[p]);
+  const int cells = std::clamp(int(std::cbrt(double(n))), 1, 32);
+  const glm::dvec3 cell = glm::max((sceneHi - sceneLo) / double(cells), glm::dvec3(1e-300));
+  auto cellRange = [&](size_t p, glm::ivec3& a, glm::ivec3& b) {
+    a = glm::clamp(glm::ivec3(glm::floor((lo[p] - sceneLo) / cell)), 0, cells - 1);
+    b = glm::clamp(glm::ivec3(glm::floor((hi[p] - sceneLo) / cell)), 0, cells - 1);
+  };
+  std::vector<std::vector<int>> grid(size_t(cells) * cells * cells);
+  auto at = [&](int x, int y, int z) -> std::vector<int>& { return grid[(size_t(x) * cells + y) * cells + z]; };
+  for (size_t p = 0; p < n; ++p) {
+    glm::ivec3 a, b;
+    cellRange(p, a, b);
+    for (int x = a.x; x <= b.x; ++x)
+      for (int y = a.y; y <= b.y; ++y)
+        for (int z = a.z; z <= b.z; ++z) at(x, y, z).push_back(int(p));
+  }
+  // New points merge with existing ones within the tolerance.
+  PointGrid near(table, points);
+  std::vector<int> made;
+  auto snap = [&](const glm::dvec3& x) {
+    int found = -1;
+    double best = tolerance;
+    near.visit(x - tolerance, x + tolerance, [&](int id) {
+      double d = glm::length(table[id] - x);
+      if (d <= best) best = d, found = id;
+    });
+    for (int id : made) {
+      double d = glm::length(table[id] - x);
+      if (d <= best) best = d, found = id;
+    }
+    if (found >= 0) return found;
+    made.push_back(table.id(x));
+    return made.back();
+  };
+
+  const std::vector<Piece> original = pieces;  // contacts come from the uncut pieces
+  std::vector<int> stamp(n, -1);
+  std::vector<bool> gone(n, false);
+  for (size_t r = 0; r < n; ++r) {
+    Piece& piece = pieces[r];
+    const bool twoSided = scene.surfaces[piece.surface].twoSided;
+    std::vector<ContactLine2> lines;
+    std::vector<int> from;  // the surface each line comes from
+    glm::ivec3 a, b;
+    cellRange(r, a, b);
+    for (int x = a.x; x <= b.x; ++x)
+      for (int y = a.y; y <= b.y; ++y)
+        for (int z = a.z; z <= b.z; ++z)
+          for (int s : at(x, y, z)) {
+            if (s == int(r) || stamp[s] == int(r)) continue;
+            stamp[s] = int(r);
+            if (glm::any(glm::lessThan(hi[s], lo[r])) || glm::any(glm::lessThan(hi[r], lo[s]))) continue;
+            Contact3 c;
+            if (!contactOf(table, original[r], twoSided, original[s], tolerance, c)) continue;
+            ContactLine2 line;
+            line.a = piece.frame.project(c.a);
+            line.b = piece.frame.project(c.b);
+            line.aId = c.aId >= 0 ? c.aId : snap(c.a);
+            line.bId = c.bId >= 0 ? c.bId : snap(c.b);
+            // The solid side: behind s, unless light may be on both sides of s or of r.
+            if (!twoSided && !scene.surfaces[original[s].surface].twoSided) {
+              const glm::dvec3 &nr = piece.frame.normal, &ns = original[s].frame.normal;
+              const glm::dvec3 behind = -(ns - glm::dot(ns, nr) * nr);
+              const glm::dvec2 w(glm::dot(behind, piece.frame.u), glm::dot(behind, piece.frame.v));
+              const glm::dvec2 d = line.b - line.a;
+              line.solid = glm::dot(w, glm::dvec2(-d.y, d.x)) > 0 ? 1 : -1;
+            }
+            lines.push_back(line);
+            from.push_back(original[s].surface);
+          }
+    if (lines.empty()) continue;
+    Polygon2 poly;
+    for (const auto& ring : piece.rings) {
+      poly.rings.emplace_back();
+      for (int id : ring) poly.rings.back().push_back(piece.frame.project(table[id]));
+      poly.ids.push_back(ring);
+    }
+    ContactCut cut = cutAlongContacts(poly, lines);
+    auto idOf = [&](const glm::dvec2& q, int id) { return id >= 0 ? id : snap(piece.frame.lift(q)); };
+    piece.rings.clear();
+    for (size_t k = 0; k < cut.kept.rings.size(); ++k) {
+      std::vector<int> ring;
+      for (size_t i = 0; i < cut.kept.rings[k].size(); ++i) {
+        int id = idOf(cut.kept.rings[k][i], cut.kept.ids[k][i]);
+        if (ring.empty() || ring.back() != id) ring.push_back(id);
+      }
+      while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
+      if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
+    }
+    for (size_t k = 0; k < cut.kept.lines.size(); ++k) {
+      int p = idOf(cut.kept.lines[k][0], cut.kept.lineIds[k][0]);
+      int q = idOf(cut.kept.lines[k][1], cut.kept.lineIds[k][1]);
+      if (p != q) piece.lines.push_back({p, q});
+    }
+    out.contactLines += int(lines.size());
+    for (const auto& removed : cut.removed) {
+      CutAway c{piece.surface, removed.area, {}};
+      for (int k : removed.by) c.enclosedBy.push_back(from[size_t(k)]);
+      std::sort(c.enclosedBy.begin(), c.enclosedBy.end());
+      c.enclosedBy.erase(std::unique(c.enclosedBy.begin(), c.enclosedBy.end()), c.enclosedBy.end());
+      out.cutAway.push_back(std::move(c));
+    }
+    gone[r] = piece.rings.empty();
+  }
+  size_t kept = 0;
+  for (size_t p = 0; p < n; ++p)
+    if (!gone[p]) {
+      if (kept != p) {
+        pieces[kept] = std::move(pieces[p]);
+        wheres[kept] = std::move(wheres[p]);
+      }
+      ++kept;
+    }
+  pieces.resize(kept);
+  wheres.resize(kept);
+}
+
 double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   glm::dvec3 u = b - a, v = c - a;
   return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI;
@@ -509,6 +706,7 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
   std::vector<std::string> wheres;
   std::vector<Piece> pieces = planarPieces(scene, table, wheres, out.warnings);
   double tolerance = kOnEdgeTolerance * scene.diagonal();
+  cutAtContacts(scene, table, pieces, wheres, kContactTolerance * scene.diagonal(), out);
 
   int rounds = 0;
   PieceMesher mesher(table, pieces, settings.maxElementEdge, tolerance, wheres);

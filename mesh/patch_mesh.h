@@ -42,6 +42,14 @@ struct SurfaceSummary {
   int elements = 0, patches = 0;
 };
 
+/// A part of a surface left out because other surfaces enclose it (the floor under a block):
+/// it could neither receive nor send light.
+struct CutAway {
+  int surface = -1;
+  double area = 0;
+  std::vector<int> enclosedBy;  ///< the surfaces whose backs face it
+};
+
 /// Facts about the meshing, for `radiosity info` and the tests.
 struct MeshStats {
   double minAngleDeg = 180, maxEdge = 0, maxPatchDiameter = 0;
@@ -57,6 +65,8 @@ class PatchMesh {
   TriMesh mesh;
   std::vector<Patch> patches;
   std::vector<SurfaceSummary> surfaces;  ///< parallel to Scene::surfaces
+  std::vector<CutAway> cutAway;          ///< what contacts left out
+  int contactLines = 0;                  ///< lines where surfaces touch, cut into the mesh
   MeshStats stats;
   std::vector<std::string> warnings;     ///< what the mesher changed ("triangulated ...")
 
@@ -88,7 +98,8 @@ class PatchMesh {
 };
 
 /// Meshes every surface of the scene: planar pieces (non-planar polygons are triangulated,
-/// with a warning) are refined by Delaunay refinement so that no element edge exceeds
+/// with a warning) are cut along the lines where other surfaces touch or pierce them, and
+/// what those surfaces enclose is left out (cutAway); the pieces are refined by Delaunay refinement so that no element edge exceeds
 /// settings.maxElementEdge and angles stay above 20.7 degrees where the input allows;
 /// neighbouring surfaces are split at the same points along shared edges; elements are then
 /// grouped into patches no wider than settings.maxPatchEdge. Two-sided surfaces get a second,

@@ -11,6 +11,7 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include "mesh/error.h"
@@ -30,58 +31,48 @@ using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
 using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
 using Face = CDT::Face_handle;
 
-/// Inserts every ring as a closed chain of constraints.
+/// Inserts every ring as a closed chain of constraints and every line as an open one.
 void insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
-  try {
-    for (size_t r = 0; r < polygon.rings.size(); ++r) {
-      const auto& ring = polygon.rings[r];
-      std::vector<CDT::Vertex_handle> vs;
-      for (size_t k = 0; k < ring.size(); ++k) {
-        auto v = cdt.insert(K::Point_2(ring[k].x, ring[k].y));
-        v->info().id = polygon.ids[r][k];
-        vs.push_back(v);
-      }
-      for (size_t k = 0; k < vs.size(); ++k)
-        if (vs[k] != vs[(k + 1) % vs.size()]) cdt.insert_constraint(vs[k], vs[(k + 1) % vs.size()]);
+  auto chain = [&](const std::vector<glm::dvec2>& points, const std::vector<int>& ids, bool closed) {
+    std::vector<CDT::Vertex_handle> vs;
+    for (size_t k = 0; k < points.size(); ++k) {
+      auto v = cdt.insert(K::Point_2(points[k].x, points[k].y));
+      if (ids[k] >= 0 || v->info().id < 0) v->info().id = ids[k];
+      vs.push_back(v);
     }
+    for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k)
+      if (vs[k] != vs[(k + 1) % vs.size()]) cdt.insert_constraint(vs[k], vs[(k + 1) % vs.size()]);
+  };
+  try {
+    for (size_t r = 0; r < polygon.rings.size(); ++r) chain(polygon.rings[r], polygon.ids[r], true);
+    for (size_t l = 0; l < polygon.lines.size(); ++l) chain(polygon.lines[l], polygon.lineIds[l], false);
   } catch (const CDT::Intersection_of_constraints_exception&) {
     throw inputError(where, "a simple polygon whose holes lie inside it",
                      "edges that cross each other");
   }
 }
 
-/// Marks faces by nesting depth across constraints (odd = inside the polygon minus its holes)
-/// and returns one seed point in each connected part of the inside.
-std::vector<K::Point_2> markInside(CDT& cdt) {
-  std::map<Face, int> depth;
-  std::queue<Face> frontier, next;  // breadth-first, one nesting level at a time
-  std::vector<K::Point_2> seeds;
-  next.push(cdt.infinite_face());
-  depth[cdt.infinite_face()] = 0;
-  int level = 0;
-  while (!next.empty()) {
-    std::swap(frontier, next);
-    while (!frontier.empty()) {
-      Face f = frontier.front();
-      frontier.pop();
-      for (int i = 0; i < 3; ++i) {
-        Face g = f->neighbor(i);
-        if (depth.count(g)) continue;
-        if (cdt.is_constrained(CDT::Edge(f, i))) {
-          depth[g] = level + 1;
-          next.push(g);
-        } else {
-          depth[g] = level;
-          frontier.push(g);
-        }
-      }
-    }
-    ++level;
+/// Marks the faces inside the polygon (even-odd over its rings, tested at each face's
+/// centroid; lines inside do not count) and returns one seed point in each connected part of
+/// the inside, parts being split by any constraint.
+std::vector<K::Point_2> markInside(CDT& cdt, const Polygon2& polygon) {
+  std::vector<std::vector<K::Point_2>> rings;
+  for (const auto& ring : polygon.rings) {
+    rings.emplace_back();
+    for (const auto& p : ring) rings.back().emplace_back(p.x, p.y);
   }
-  // One seed per connected inside component (components split by constraints).
+  auto inside = [&](const K::Point_2& q) {
+    bool in = false;
+    for (const auto& ring : rings)
+      if (ring.size() >= 3 &&
+          CGAL::bounded_side_2(ring.begin(), ring.end(), q, K()) == CGAL::ON_BOUNDED_SIDE)
+        in = !in;
+    return in;
+  };
+  for (auto f : cdt.finite_face_handles()) f->set_in_domain(inside(CGAL::centroid(cdt.triangle(f))));
+  std::vector<K::Point_2> seeds;
   std::map<Face, bool> seen;
   for (auto f : cdt.finite_face_handles()) {
-    f->set_in_domain(depth[f] % 2 == 1);
     if (!f->is_in_domain() || seen[f]) continue;
     seeds.push_back(CGAL::centroid(cdt.triangle(f)));
     std::queue<Face> q;
@@ -93,7 +84,7 @@ std::vector<K::Point_2> markInside(CDT& cdt) {
       for (int i = 0; i < 3; ++i) {
         Face h = g->neighbor(i);
         if (cdt.is_infinite(h) || seen[h] || cdt.is_constrained(CDT::Edge(g, i))) continue;
-        if (depth[h] % 2 == 1) {
+        if (h->is_in_domain()) {
           seen[h] = true;
           q.push(h);
         }
@@ -132,7 +123,7 @@ double angleAt(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
 
 /// A lone triangle that already meets the criteria needs no CGAL at all (mesh files).
 bool isGoodTriangle(const Polygon2& p, double maxEdge) {
-  if (p.rings.size() != 1 || p.rings[0].size() != 3) return false;
+  if (p.rings.size() != 1 || p.rings[0].size() != 3 || !p.lines.empty()) return false;
   const auto& r = p.rings[0];
   const double lo = kMeshMinAngleDeg * M_PI / 180, hi = M_PI / 2;  // obtuse: encroached
   for (int i = 0; i < 3; ++i) {
@@ -149,7 +140,7 @@ bool isGoodTriangle(const Polygon2& p, double maxEdge) {
 Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
   CDT cdt;
   insertRings(cdt, polygon, where);
-  markInside(cdt);
+  markInside(cdt, polygon);
   return extract(cdt);
 }
 
@@ -164,7 +155,7 @@ Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::s
   }
   CDT cdt;
   insertRings(cdt, polygon, where);
-  std::vector<K::Point_2> seeds = markInside(cdt);
+  std::vector<K::Point_2> seeds = markInside(cdt, polygon);
   // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
   CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(0.125, maxEdge), true);
   return extract(cdt);

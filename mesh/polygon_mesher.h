@@ -9,11 +9,15 @@
 
 namespace rad {
 
-/// A polygon in 2D: rings[0] is the outer boundary, the rest are holes; ids[r][k] names
-/// rings[r][k] for the caller (a shared boundary point), or is -1.
+/// A polygon in 2D: closed rings, inside by the even-odd rule (rings[0] is usually the outer
+/// boundary, the rest holes); ids[r][k] names rings[r][k] for the caller (a shared boundary
+/// point), or is -1. `lines` are open polylines inside it that meshing must keep as edges
+/// (contact lines), with their ids alike.
 struct Polygon2 {
   std::vector<std::vector<glm::dvec2>> rings;
   std::vector<std::vector<int>> ids;
+  std::vector<std::vector<glm::dvec2>> lines;
+  std::vector<std::vector<int>> lineIds;
 };
 
 /// A triangulation of a Polygon2. Triangles are counter-clockwise; points keep the

@@ -58,6 +58,16 @@ void runInfo(const InfoOptions& o) {
               scene.surfaces.size(), mesh.patches.size(), mesh.elementCount(),
               mesh.mesh.n_vertices());
   std::printf("area        %.9g (all sides), emitting %.9g\n", total, emitting);
+  // Contacts: where surfaces touch, the mesh is cut; what they enclose is left out.
+  double cut = 0;
+  for (const auto& c : mesh.cutAway) cut += c.area;
+  std::printf("contacts    %d lines where surfaces touch; %.9g cut away\n", mesh.contactLines, cut);
+  for (const auto& c : mesh.cutAway) {
+    std::string by;
+    for (int s : c.enclosedBy) by += (by.empty() ? "" : ", ") + scene.surfaces[s].name;
+    std::printf("  %-20s %14.9g cut away: enclosed by %s\n", scene.surfaces[c.surface].name.c_str(),
+                c.area, by.c_str());
+  }
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",
               mesh.stats.minAngleDeg, mesh.stats.maxEdge, mesh.stats.maxPatchDiameter);

@@ -133,9 +133,23 @@ void runSolve(const SolveOptions& o) {
   // patches whose unshot power never became the largest never shot.
   int black = 0;
   for (int e = 0; e < mesh.elementCount(); ++e) black += mesh.reflectance(e) == glm::dvec3(0.0);
+  // What contacts cut away: the parts of surfaces other surfaces enclose (a floor under a
+  // block), which could neither receive nor send light.
+  Json cutAway = Json::array();
+  double cutArea = 0;
+  for (const auto& c : mesh.cutAway) {
+    Json by = Json::array();
+    for (int s : c.enclosedBy) by.push_back(scene.surfaces[s].name);
+    cutAway.push_back({{"surface", scene.surfaces[c.surface].name}, {"area", c.area},
+                       {"enclosed_by", by}});
+    cutArea += c.area;
+  }
   counts["left_out"] = {{"black_elements_receive_nothing", black},
                         {"patches_never_shot", solver.patchesNeverShot()},
                         {"channels_solved", solver.grey() ? 1 : 3},
+                        {"area_cut_away", cutArea},
+                        {"cut_away", cutAway},
+                        {"contact_lines", mesh.contactLines},
                         {"full_matrix", "not built (progressive path)"}};
   report["counts"] = counts;
   report["shots"] = solver.shots();

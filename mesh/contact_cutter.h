@@ -1,0 +1,44 @@
+#pragma once
+// Cutting a planar polygon along the lines where other surfaces touch or pierce it, and
+// leaving out what those surfaces enclose. The CGAL implementation (2D arrangements, exact
+// constructions) stays behind this header.
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "mesh/polygon_mesher.h"
+
+namespace rad {
+
+/// Where another surface meets the polygon, in the polygon's 2D frame.
+struct ContactLine2 {
+  glm::dvec2 a{0.0}, b{0.0};
+  int aId = -1, bId = -1;  ///< the caller's ids of the ends, or -1
+  /// Which side of a→b the touching surface's back (its solid side) faces: +1 left, -1
+  /// right, 0 neither (a two-sided surface).
+  int solid = 0;
+};
+
+/// The polygon cut along the contact lines.
+struct ContactCut {
+  /// What is kept: rings (outer boundaries and holes, any nesting) and, as lines, the contact
+  /// lines that run inside it. Ids: the polygon's and the contacts' ids where a point is one
+  /// of theirs, -1 for points the cut made (crossings).
+  Polygon2 kept;
+  /// The parts left out: area, and the contacts (indices) whose solid side enclosed each.
+  struct Removed {
+    double area = 0;
+    std::vector<int> by;
+  };
+  std::vector<Removed> removed;
+};
+
+/// Cuts `polygon` along `contacts` and leaves out every part of it that the contacts enclose:
+/// a part all of whose edges are contact lines with their solid side towards it, or edges of
+/// the polygon on which another surface stands, provided at least one is such a solid side
+/// (a block standing on a floor, also when pushed into a wall). Contact lines with nothing on
+/// either side stay in the kept polygon as lines.
+ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts);
+
+}  // namespace rad
