@@ -3,6 +3,7 @@
 // outside the polygon.
 #include "mesh/contact_cutter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -202,17 +203,21 @@ ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLi
     if (!boundary(h) || done.count(h)) continue;
     std::vector<glm::dvec2> ring;
     std::vector<int> ids;
+    std::vector<bool> contact;
     Halfedge e = h;
     do {
       done.insert(e);
       ring.push_back(approx(e->source()->point()));
       ids.push_back(idAt(e->source()->point()));
+      const auto& data = e->curve().data();
+      contact.push_back(std::find(data.begin(), data.end(), kRingEdge) == data.end());
       Halfedge next = e->next();
       while (!boundary(next)) next = next->twin()->next();
       e = next;
     } while (e != Halfedge(h));
     out.kept.rings.push_back(std::move(ring));
     out.kept.ids.push_back(std::move(ids));
+    out.contactEdge.push_back(std::move(contact));
   }
   // Lines: edges with kept faces on both sides (contact lines that cut, or lie inside, what is
   // kept).

@@ -26,6 +26,9 @@ struct ContactCut {
   /// lines that run inside it. Ids: the polygon's and the contacts' ids where a point is one
   /// of theirs, -1 for points the cut made (crossings).
   Polygon2 kept;
+  /// For each edge of kept.rings (edge k runs from point k to k + 1): whether it is a contact
+  /// line inside the original polygon (not along its boundary). Lines always are.
+  std::vector<std::vector<bool>> contactEdge;
   /// The parts left out: area, and the contacts (indices) whose solid side enclosed each.
   struct Removed {
     double area = 0;

@@ -30,6 +30,10 @@ namespace {
 constexpr double kOnEdgeTolerance = 1e-7;
 /// Surfaces closer than this times the scene diagonal touch.
 constexpr double kContactTolerance = 1e-5;
+/// Contact lines across a surface (a block's base on a floor) are split into parts this many
+/// times shorter than the element edge; Delaunay refinement grades the elements from there,
+/// where the light changes fastest.
+constexpr double kContactRefinement = 8;
 /// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
 constexpr int kMaxAgreementRounds = 200;
 
@@ -116,15 +120,18 @@ struct Segment {
   int a = -1, b = -1;
   std::vector<double> t;
   std::vector<int> users;  ///< pieces whose boundary runs along it
+  bool fine = false;       ///< split finer (a contact line across a surface)
 };
 
 /// Meshes a set of pieces at one edge length so that shared boundaries agree.
 class PieceMesher {
  public:
+  /// Edges in `fine` (point id pairs, lower first) are split into parts maxEdge / fineRatio.
   PieceMesher(PointTable& table, std::vector<Piece> pieces, double maxEdge, double tolerance,
-              std::vector<std::string> wheres)
+              std::vector<std::string> wheres, std::set<std::pair<int, int>> fine = {},
+              double fineRatio = 1)
       : table_(table), pieces_(std::move(pieces)), wheres_(std::move(wheres)),
-        maxEdge_(maxEdge), tolerance_(tolerance) {}
+        maxEdge_(maxEdge), tolerance_(tolerance), fine_(std::move(fine)), fineRatio_(fineRatio) {}
 
   /// Triangles as point ids, per piece; rounds counts the agreement passes.
   std::vector<std::vector<std::array<int, 3>>> run(int& rounds) {
@@ -199,23 +206,30 @@ class PieceMesher {
     std::sort(cuts.begin(), cuts.end());
     int prev = from;
     cuts.emplace_back(1.0, to);
+    const bool fine = fine_.count(std::minmax(from, to)) > 0;
     for (const auto& [t, c] : cuts) {
       if (c == prev) continue;
-      chain.push_back({segmentBetween(prev, c, piece), prev < c});
+      chain.push_back({segmentBetween(prev, c, piece, fine), prev < c});
       prev = c;
     }
   }
 
-  int segmentBetween(int p, int q, int piece) {
+  int segmentBetween(int p, int q, int piece, bool fine) {
     auto key = std::minmax(p, q);
     auto [it, added] = segmentIndex_.emplace(key, int(segments_.size()));
     if (added) {
       Segment s;
       s.a = key.first;
       s.b = key.second;
-      int n = std::max(1, int(std::ceil(glm::length(table_[s.b] - table_[s.a]) / maxEdge_ - 1e-9)));
-      for (int k = 1; k < n; ++k) s.t.push_back(double(k) / n);
       segments_.push_back(std::move(s));
+    }
+    Segment& s = segments_[it->second];
+    if (added || (fine && !s.fine)) {  // equal parts, finer if any user asks
+      s.fine = s.fine || fine;
+      double part = s.fine ? maxEdge_ / fineRatio_ : maxEdge_;
+      int n = std::max(1, int(std::ceil(glm::length(table_[s.b] - table_[s.a]) / part - 1e-9)));
+      s.t.clear();
+      for (int k = 1; k < n; ++k) s.t.push_back(double(k) / n);
     }
     auto& users = segments_[it->second].users;
     if (users.empty() || users.back() != piece) users.push_back(piece);
@@ -311,6 +325,8 @@ class PieceMesher {
   std::vector<Piece> pieces_;
   std::vector<std::string> wheres_;
   double maxEdge_, tolerance_;
+  std::set<std::pair<int, int>> fine_;
+  double fineRatio_;
   std::vector<Segment> segments_;
   std::map<std::pair<int, int>, int> segmentIndex_;
   std::vector<std::vector<std::vector<ChainEdge>>> chains_;
@@ -525,9 +541,11 @@ bool contactOf(const PointTable& table, const Piece& r, bool rTwoSided, const Pi
 /// Cuts every piece along the lines where other pieces touch or pierce it (a block standing
 /// on a floor, a wall meeting a floor, a box pushed into a wall) and leaves out what they
 /// enclose (cutAlongContacts). New points within `tolerance` of an existing one are merged
-/// with it, so that both pieces at a contact share their points. Records what was left out.
+/// with it, so that both pieces at a contact share their points. Records what was left out,
+/// and in `across` the edges (point ids) of contact lines that run across a piece.
 void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces,
-                   std::vector<std::string>& wheres, double tolerance, PatchMesh& out) {
+                   std::vector<std::string>& wheres, double tolerance,
+                   std::set<std::pair<int, int>>& across, PatchMesh& out) {
   const size_t n = pieces.size();
   // Pieces by bounding box, in a grid over the scene, to find the ones that may touch.
   std::vector<glm::dvec3> lo(n, glm::dvec3(HUGE_VAL)), hi(n, glm::dvec3(-HUGE_VAL));
@@ -622,17 +640,27 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
     piece.rings.clear();
     for (size_t k = 0; k < cut.kept.rings.size(); ++k) {
       std::vector<int> ring;
-      for (size_t i = 0; i < cut.kept.rings[k].size(); ++i) {
+      const size_t m = cut.kept.rings[k].size();
+      for (size_t i = 0; i < m; ++i) {
         int id = idOf(cut.kept.rings[k][i], cut.kept.ids[k][i]);
         if (ring.empty() || ring.back() != id) ring.push_back(id);
       }
+      for (size_t i = 0; i < m; ++i)
+        if (cut.contactEdge[k][i]) {
+          int p = idOf(cut.kept.rings[k][i], cut.kept.ids[k][i]);
+          int q = idOf(cut.kept.rings[k][(i + 1) % m], cut.kept.ids[k][(i + 1) % m]);
+          if (p != q) across.insert(std::minmax(p, q));
+        }
       while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
       if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
     }
     for (size_t k = 0; k < cut.kept.lines.size(); ++k) {
       int p = idOf(cut.kept.lines[k][0], cut.kept.lineIds[k][0]);
       int q = idOf(cut.kept.lines[k][1], cut.kept.lineIds[k][1]);
-      if (p != q) piece.lines.push_back({p, q});
+      if (p != q) {
+        piece.lines.push_back({p, q});
+        across.insert(std::minmax(p, q));
+      }
     }
     out.contactLines += int(lines.size());
     for (const auto& removed : cut.removed) {
@@ -706,10 +734,13 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
   std::vector<std::string> wheres;
   std::vector<Piece> pieces = planarPieces(scene, table, wheres, out.warnings);
   double tolerance = kOnEdgeTolerance * scene.diagonal();
-  cutAtContacts(scene, table, pieces, wheres, kContactTolerance * scene.diagonal(), out);
+  std::set<std::pair<int, int>> across;
+  if (settings.cutContacts)
+    cutAtContacts(scene, table, pieces, wheres, kContactTolerance * scene.diagonal(), across, out);
 
   int rounds = 0;
-  PieceMesher mesher(table, pieces, settings.maxElementEdge, tolerance, wheres);
+  PieceMesher mesher(table, pieces, settings.maxElementEdge, tolerance, wheres, across,
+                     kContactRefinement);
   auto elementTriangles = mesher.run(rounds);
   out.stats.rounds = rounds;
   if (mesher.unresolvedPoints())

@@ -23,6 +23,7 @@ using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 struct MeshSettings {
   double maxElementEdge = 0;  ///< no element edge is longer
   double maxPatchEdge = 0;    ///< no patch is wider (largest distance between its points)
+  bool cutContacts = true;    ///< cut surfaces where others touch them; leave out what they enclose
 };
 
 /// A shooter: a connected group of elements of one surface side.

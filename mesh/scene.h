@@ -91,6 +91,7 @@ struct SolverBlock {
   std::optional<int> hemicubeResolution, emitterSamples, shooterSamples;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;
+  std::optional<bool> cutContacts;
 };
 
 struct Scene {

@@ -482,7 +482,7 @@ class SceneReader {
   void readSolver(const Node& n) {
     n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution", "tolerance",
                     "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
-                    "shooter_samples", "proximity_samples", "factor_cache_mb"});
+                    "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts"});
     SolverBlock& b = scene_.solver;
     if (n.has("max_element_edge"))
       b.maxElementEdge = n["max_element_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
@@ -492,6 +492,7 @@ class SceneReader {
     if (n.has("time_limit")) b.timeLimit = n["time_limit"].number(1e-300, HUGE_VAL, "(0, inf)");
     if (n.has("overshoot")) b.overshoot = n["overshoot"].number(1, 2, "[1, 2]");
     if (n.has("exposure")) b.exposure = n["exposure"].number(1e-300, HUGE_VAL, "(0, inf)");
+    if (n.has("cut_contacts")) b.cutContacts = n["cut_contacts"].boolean();
     if (n.has("proximity_samples"))
       b.proximitySamples = n["proximity_samples"].number(0, 65536, "[0, 65536]");
     if (n.has("factor_cache_mb"))

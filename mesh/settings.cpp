@@ -12,6 +12,7 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
                           scene.diagonal() / kDefaultElementsPerDiagonal);
   s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
                         s.maxElementEdge * kDefaultPatchToElement);
+  s.cutContacts = pick(flags.cutContacts, file.cutContacts, true);
   s.hemicubeResolution =
       pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
   s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);

@@ -41,7 +41,9 @@ struct Settings {
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
 
-  MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge}; }
+  bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
+
+  MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge, cutContacts}; }
 };
 
 /// Merges `flags` over `scene.solver` over the defaults.

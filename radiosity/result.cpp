@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "mesh/color.h"
@@ -14,9 +16,63 @@
 
 namespace rad {
 
+namespace {
+
+/// Below this (relative) determinant the elements' centroids around a vertex are too nearly
+/// collinear for a linear fit.
+constexpr double kFitConditioning = 1e-6;
+
+/// The value at boundary vertex v of the linear function fitted, by area-weighted least
+/// squares in the surface's plane, to the element values at their centroids over the elements
+/// around v and their neighbours; kept within the span of those values stretched by the span
+/// on either side, and non-negative. False when the centroids are too nearly collinear.
+bool fitAtBoundary(const PatchMesh& m, const std::vector<glm::dvec3>& B, TriMesh::VertexHandle v,
+                   glm::dvec3& out) {
+  std::vector<int> faces;
+  for (auto f : m.mesh.vf_range(v))
+    for (auto w : m.mesh.fv_range(f))
+      for (auto g : m.mesh.vf_range(w)) faces.push_back(g.idx());
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  if (faces.size() < 3) return false;
+  const glm::dvec3 p = PatchMesh::toGlm(m.mesh.point(v)), n = m.normal(faces[0]);
+  const glm::dvec3 u = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 w = glm::cross(n, u);
+  double scale = 0;
+  for (int f : faces) scale += glm::length(m.centroid(f) - p);
+  scale /= double(faces.size());
+  // Normal equations of B ≈ a + b·x + c·y, x and y in units of `scale`.
+  glm::dmat3 A(0.0);
+  glm::dvec3 rhs[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};  // per channel
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  double weights = 0;
+  for (int f : faces) {
+    const glm::dvec3 d = (m.centroid(f) - p) / scale;
+    const glm::dvec3 basis(1.0, glm::dot(d, u), glm::dot(d, w));
+    const double weight = m.area(f);
+    weights += weight;
+    A += weight * glm::outerProduct(basis, basis);
+    for (int c = 0; c < 3; ++c) rhs[c] += weight * B[size_t(f)][c] * basis;
+    lo = glm::min(lo, B[size_t(f)]);
+    hi = glm::max(hi, B[size_t(f)]);
+  }
+  if (!(std::abs(glm::determinant(A / weights)) > kFitConditioning)) return false;
+  const glm::dmat3 inverse = glm::inverse(A);
+  const glm::dvec3 span = hi - lo;
+  for (int c = 0; c < 3; ++c)
+    out[c] = std::clamp((inverse * rhs[c]).x, std::max(0.0, lo[c] - span[c]), hi[c] + span[c]);
+  return true;
+}
+
+}  // namespace
+
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
   std::vector<glm::dvec3> out(m.mesh.n_vertices(), glm::dvec3(0.0));
   for (auto v : m.mesh.vertices()) {
+    // On a surface's boundary the elements lie on one side only, so their mean is the value
+    // some way inwards: fit and extrapolate there instead (the base of a block, where the
+    // light changes fastest). Elsewhere, the area-weighted mean.
+    if (m.mesh.is_boundary(v) && fitAtBoundary(m, B, v, out[v.idx()])) continue;
     double area = 0;
     glm::dvec3 sum(0.0);
     for (auto f : m.mesh.vf_range(v)) {

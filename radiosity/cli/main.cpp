@@ -17,6 +17,9 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
                  "Widest patch (shooter), scene units (solver.max_patch_edge; default: 3 "
                  "element edges)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--cut-contacts", flags.cutContacts,
+                 "Cut surfaces along the lines where others touch them and leave out what those "
+                 "enclose, true or false (solver.cut_contacts; default true)");
 }
 
 void addSolverFlags(CLI::App& app, SolverBlock& flags) {

@@ -113,6 +113,7 @@ void runSolve(const SolveOptions& o) {
   Json s;
   s["max_element_edge"] = settings.maxElementEdge;
   s["max_patch_edge"] = settings.maxPatchEdge;
+  s["cut_contacts"] = settings.cutContacts;
   s["hemicube_resolution"] = settings.hemicubeResolution;
   s["tolerance"] = settings.tolerance;
   s["seed"] = settings.seed;

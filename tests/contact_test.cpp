@@ -1,0 +1,171 @@
+// Contact lines: the floor next to the Cornell box's blocks against the exact direct light, and
+// the contacts scene (a box half sunk into the floor, a board leaning against a wall).
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "mesh/patch_mesh.h"
+#include "mesh/scene.h"
+#include "mesh/settings.h"
+#include "radiosity/progressive_solver.h"
+#include "radiosity/result.h"
+
+namespace rad {
+namespace {
+
+const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+
+/// The bound for the floor 4 mm from a block's base.
+constexpr double kNearBaseTolerance = 0.05;
+/// Light cells per side for the exact visible factor (midpoint rule; converged to ~1e-4).
+constexpr int kLightCells = 160;
+
+/// Ray (origin o, direction d) hits triangle (a, b, c) at a parameter in (0, 1)
+/// (Möller–Trumbore).
+bool hits(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+          const glm::dvec3& c) {
+  glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  double det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-300) return false;
+  glm::dvec3 s = o - a;
+  double u = glm::dot(s, p) / det;
+  if (u < 0 || u > 1) return false;
+  glm::dvec3 q = glm::cross(s, e1);
+  double v = glm::dot(d, q) / det;
+  if (v < 0 || u + v > 1) return false;
+  double t = glm::dot(e2, q) / det;
+  return t > 1e-9 && t < 1 - 1e-9;
+}
+
+/// The form factor from floor point x (normal +y) to the light, blocks occluding: the
+/// light cut into kLightCells² cells, each seen (or not) from its centre.
+double visibleLightFactor(const Scene& scene, const glm::dvec3& x, bool occluded = true) {
+  const Ring* light = nullptr;
+  std::vector<const Ring*> occluders;
+  for (const auto& s : scene.surfaces) {
+    if (s.name == "light") light = &s.polygons[0].outer;
+    if (occluded && s.name.find("_block_") != std::string::npos)
+      occluders.push_back(&s.polygons[0].outer);
+  }
+  const Ring& q = *light;
+  const glm::dvec3 n(0, 1, 0), lightNormal(0, -1, 0);
+  double F = 0;
+  for (int i = 0; i < kLightCells; ++i)
+    for (int j = 0; j < kLightCells; ++j) {
+      double u = (i + 0.5) / kLightCells, v = (j + 0.5) / kLightCells;
+      glm::dvec3 y = q[0] + (q[1] - q[0]) * u + (q[3] - q[0]) * v;
+      double cellArea = glm::length(glm::cross(q[1] - q[0], q[3] - q[0])) / (kLightCells * kLightCells);
+      glm::dvec3 d = y - x;
+      double r2 = glm::dot(d, d);
+      double cosX = glm::dot(n, d) / std::sqrt(r2), cosY = glm::dot(lightNormal, -d) / std::sqrt(r2);
+      if (cosX <= 0 || cosY <= 0) continue;
+      bool blocked = false;
+      for (const Ring* o : occluders)
+        for (size_t k = 1; k + 1 < o->size() && !blocked; ++k)
+          blocked = hits(x, d, (*o)[0], (*o)[k], (*o)[k + 1]);
+      if (!blocked) F += cosX * cosY / (M_PI * r2) * cellArea;
+    }
+  return F;
+}
+
+/// Gouraud value of the floor at x: the floor element containing x, its vertex radiosities
+/// interpolated (what the viewer draws).
+double floorValue(const PatchMesh& mesh, int floor, const std::vector<glm::dvec3>& vertexB,
+                  const glm::dvec3& x) {
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) != floor) continue;
+    auto c = mesh.corners(e);
+    auto area = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& p) {
+      return (b.z - a.z) * (p.x - a.x) - (b.x - a.x) * (p.z - a.z);  // y of (p − a)×(b − a)
+    };
+    double total = area(c[0], c[1], c[2]);
+    double w0 = area(c[1], c[2], x) / total, w1 = area(c[2], c[0], x) / total, w2 = 1 - w0 - w1;
+    if (w0 < -1e-12 || w1 < -1e-12 || w2 < -1e-12) continue;
+    int k = 0;
+    double value = 0;
+    const double w[3] = {w0, w1, w2};
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e)))
+      value += w[k++] * vertexB[size_t(v.idx())].y;
+    return value;
+  }
+  ADD_FAILURE() << "no floor element at " << x.x << " " << x.z;
+  return 0;
+}
+
+/// Errors at one distance from the blocks: relative, over the points the blocks leave at
+/// least kLit of the light they would get without them; and over all points, relative to
+/// that unoccluded light (points deep in a block's shadow have next to no light to compare).
+struct NearBase {
+  double distance = 0, worstLit = 0, worstOfUnoccluded = 0;
+};
+constexpr double kLit = 0.2;
+
+/// Direct light only (the emitters shoot once each), default settings otherwise: the worst
+/// relative error of the displayed floor value at points `distances` mm out from the middle
+/// of every block side's base, against ρ·E·(exact visible factor).
+std::vector<NearBase> floorNearBlocks(bool cutContacts, const std::vector<double>& distances) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  Settings settings = resolveSettings(scene, SolverBlock{});
+  settings.cutContacts = cutContacts;
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  int floor = -1, emitterPatches = 0;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s)
+    if (scene.surfaces[s].name == "floor") floor = int(s);
+  for (const auto& p : mesh.patches) emitterPatches += luminance(mesh.emission(p.elements[0])) > 0;
+  SolverOptions options;
+  options.maxShots = emitterPatches;
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  ProgressiveSolver solver(mesh, factors, options);
+  solver.run();
+  EXPECT_EQ(solver.patchesNeverShot(), int(mesh.patches.size()) - emitterPatches);
+  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, solver.radiosity());
+
+  const double rho = scene.materials[scene.surfaces[floor].material].reflectance.y;
+  double E = 0;
+  for (const auto& s : scene.surfaces)
+    if (s.name == "light") E = scene.materials[s.material].emission.y;
+  std::vector<NearBase> out;
+  for (double d : distances) {
+    NearBase row;
+    row.distance = d;
+    for (const auto& s : scene.surfaces) {
+      if (s.name.find("_block_side_") == std::string::npos) continue;
+      const Ring& q = s.polygons[0].outer;  // bottom edge: the two corners at y = 0
+      glm::dvec3 a(0.0), b(0.0);
+      int found = 0;
+      for (const auto& p : q)
+        if (p.y == 0) (found++ ? b : a) = p;
+      EXPECT_EQ(found, 2);
+      glm::dvec3 n = glm::normalize(glm::cross(q[1] - q[0], q[2] - q[0]));  // outwards
+      glm::dvec3 x = (a + b) * 0.5 + glm::normalize(glm::dvec3(n.x, 0, n.z)) * d;
+      const double exact = rho * E * visibleLightFactor(scene, x);
+      const double open = rho * E * visibleLightFactor(scene, x, false);
+      const double shown = floorValue(mesh, floor, vertexB, x);
+      if (exact >= kLit * open) row.worstLit = std::max(row.worstLit, std::abs(shown - exact) / exact);
+      row.worstOfUnoccluded = std::max(row.worstOfUnoccluded, std::abs(shown - exact) / open);
+    }
+    out.push_back(row);
+  }
+  return out;
+}
+
+/// The floor 4 mm from a block's base is within 5 % of the exact direct light once the floor
+/// is cut at the block; uncut, the dark vertices under the block pull it far down.
+TEST(ContactTest, FloorNextToTheBlocksMatchesTheExactDirectLight) {
+  const std::vector<double> distances = {4, 10, 25, 60};
+  auto cut = floorNearBlocks(true, distances);
+  auto uncut = floorNearBlocks(false, distances);
+  for (size_t i = 0; i < distances.size(); ++i)
+    std::printf("floor %2.0f mm from a block's base, worst error: lit points %.1f %% cut, %.1f %% "
+                "uncut; all points, of the unoccluded light, %.1f %% cut, %.1f %% uncut\n",
+                distances[i], 100 * cut[i].worstLit, 100 * uncut[i].worstLit,
+                100 * cut[i].worstOfUnoccluded, 100 * uncut[i].worstOfUnoccluded);
+  EXPECT_LE(cut[0].worstLit, kNearBaseTolerance);
+  EXPECT_GT(uncut[0].worstLit, kNearBaseTolerance);
+}
+
+}  // namespace
+}  // namespace rad
