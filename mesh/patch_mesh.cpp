@@ -30,6 +30,9 @@ namespace {
 constexpr double kOnEdgeTolerance = 1e-7;
 /// Surfaces closer than this times the scene diagonal touch.
 constexpr double kContactTolerance = 1e-5;
+/// Parts cut away that are smaller than this share of their piece are round-off (slivers
+/// between nearly coincident lines) and go unreported.
+constexpr double kNegligibleCut = 1e-9;
 /// Contact lines across a surface (a block's base on a floor) are split into parts this many
 /// times shorter than the element edge; Delaunay refinement grades the elements from there,
 /// where the light changes fastest.
@@ -559,7 +562,7 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
         points.push_back(id);
       }
   for (size_t p = 0; p < n; ++p) sceneLo = glm::min(sceneLo, lo[p]), sceneHi = glm::max(sceneHi, hi[p]);
-  const int cells = std::clamp(int(std::cbrt(double(n))), 1, 32);
+  const int cells = std::clamp(int(2 * std::cbrt(double(n))), 1, 64);
   const glm::dvec3 cell = glm::max((sceneHi - sceneLo) / double(cells), glm::dvec3(1e-300));
   auto cellRange = [&](size_t p, glm::ivec3& a, glm::ivec3& b) {
     a = glm::clamp(glm::ivec3(glm::floor((lo[p] - sceneLo) / cell)), 0, cells - 1);
@@ -612,6 +615,11 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
             if (glm::any(glm::lessThan(hi[s], lo[r])) || glm::any(glm::lessThan(hi[r], lo[s]))) continue;
             Contact3 c;
             if (!contactOf(table, original[r], twoSided, original[s], tolerance, c)) continue;
+            // Only lines that come near the piece (a floor's plane crosses every face of a
+            // mesh standing on it, far from most of them).
+            if (glm::any(glm::lessThan(glm::max(c.a, c.b), lo[r])) ||
+                glm::any(glm::lessThan(hi[r], glm::min(c.a, c.b))))
+              continue;
             ContactLine2 line;
             line.a = piece.frame.project(c.a);
             line.b = piece.frame.project(c.b);
@@ -628,7 +636,23 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
             lines.push_back(line);
             from.push_back(original[s].surface);
           }
-    if (lines.empty()) continue;
+    // Lines along the piece's own edges (a wall standing on a floor's edge, a mesh's folds)
+    // cut nothing and cannot close a part by themselves: no arrangement needed.
+    auto alongEdge = [&](const ContactLine2& line) {
+      for (const auto& ring : original[r].rings)
+        for (size_t k = 0; k < ring.size(); ++k) {
+          glm::dvec2 a = piece.frame.project(table[ring[k]]);
+          glm::dvec2 d = piece.frame.project(table[ring[(k + 1) % ring.size()]]) - a;
+          auto off = [&](const glm::dvec2& q) {
+            double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
+            return glm::length(a + d * t - q);
+          };
+          if (off(line.a) <= tolerance && off(line.b) <= tolerance) return true;
+        }
+      return false;
+    };
+    out.contactLines += int(lines.size());
+    if (std::all_of(lines.begin(), lines.end(), alongEdge)) continue;
     Polygon2 poly;
     for (const auto& ring : piece.rings) {
       poly.rings.emplace_back();
@@ -662,8 +686,12 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
         across.insert(std::minmax(p, q));
       }
     }
-    out.contactLines += int(lines.size());
+    double pieceArea = 0;
+    for (const auto& ring : poly.rings)
+      for (size_t k = 0; k < ring.size(); ++k)
+        pieceArea += 0.5 * (ring[k].x * ring[(k + 1) % ring.size()].y - ring[(k + 1) % ring.size()].x * ring[k].y);
     for (const auto& removed : cut.removed) {
+      if (removed.area <= kNegligibleCut * std::abs(pieceArea)) continue;  // a sliver between lines
       CutAway c{piece.surface, removed.area, {}};
       for (int k : removed.by) c.enclosedBy.push_back(from[size_t(k)]);
       std::sort(c.enclosedBy.begin(), c.enclosedBy.end());

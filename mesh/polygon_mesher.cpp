@@ -121,16 +121,14 @@ double angleAt(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
 }
 
-/// A lone triangle that already meets the criteria needs no CGAL at all (mesh files).
+/// A lone triangle no longer than maxEdge needs no CGAL at all (mesh files). Its angles are
+/// the input's: refining a thin one for shape only would fill it with tiny elements (a UV
+/// sphere's poles took minutes, or overflowed the stack).
 bool isGoodTriangle(const Polygon2& p, double maxEdge) {
   if (p.rings.size() != 1 || p.rings[0].size() != 3 || !p.lines.empty()) return false;
   const auto& r = p.rings[0];
-  const double lo = kMeshMinAngleDeg * M_PI / 180, hi = M_PI / 2;  // obtuse: encroached
-  for (int i = 0; i < 3; ++i) {
-    double a = angleAt(r[i], r[(i + 1) % 3], r[(i + 2) % 3]);
-    double len = std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y);
-    if (a < lo || a > hi || len > maxEdge) return false;
-  }
+  for (int i = 0; i < 3; ++i)
+    if (std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y) > maxEdge) return false;
   double cross = (r[1].x - r[0].x) * (r[2].y - r[0].y) - (r[1].y - r[0].y) * (r[2].x - r[0].x);
   return cross > 0;
 }

@@ -88,7 +88,7 @@ struct Fog {
 struct SolverBlock {
   std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
   std::optional<double> factorCacheMb, proximitySamples;
-  std::optional<int> hemicubeResolution, emitterSamples, shooterSamples;
+  std::optional<int> hemicubeResolution, emitterHemicubeResolution, emitterSamples, shooterSamples;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;
   std::optional<bool> cutContacts;

@@ -480,7 +480,8 @@ class SceneReader {
   }
 
   void readSolver(const Node& n) {
-    n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution", "tolerance",
+    n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution",
+                    "emitter_hemicube_resolution", "tolerance",
                     "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                     "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts"});
     SolverBlock& b = scene_.solver;
@@ -511,11 +512,13 @@ class SceneReader {
       if (x != std::floor(x)) m.fail("a whole number");
       b.maxShots = long(x);
     }
-    if (n.has("hemicube_resolution")) {
-      Node r = n["hemicube_resolution"];
+    for (auto [key, slot] : {std::pair{"hemicube_resolution", &b.hemicubeResolution},
+                             std::pair{"emitter_hemicube_resolution", &b.emitterHemicubeResolution}}) {
+      if (!n.has(key)) continue;
+      Node r = n[key];
       double x = r.number(2, 8192, "[2, 8192]");
       if (x != std::floor(x) || int(x) % 2) r.fail("an even whole number");
-      b.hemicubeResolution = int(x);
+      *slot = int(x);
     }
     if (n.has("seed")) {
       Node s = n["seed"];

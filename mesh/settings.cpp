@@ -13,6 +13,8 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
                         s.maxElementEdge * kDefaultPatchToElement);
   s.cutContacts = pick(flags.cutContacts, file.cutContacts, true);
+  s.emitterHemicubeResolution = pick(flags.emitterHemicubeResolution,
+                                     file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
   s.hemicubeResolution =
       pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
   s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);

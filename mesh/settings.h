@@ -21,6 +21,10 @@ constexpr double kDefaultFactorCacheMb = 256;
 /// with 1 point per patch raised to 0.7·(D/d)² near other surfaces is within 2.0 % (L2) in
 /// 0.41 s; R = 256 with 4 points on every patch was within 2.8 % in 0.58 s.
 constexpr int kDefaultHemicubeResolution = 128;
+/// Emitters shoot at twice that: measured on the Cornell box's floor 4 mm from the blocks,
+/// the direct light's worst error over three seeds is 3.5–7.5 % at 128, 1.9–2.8 % at 256
+/// (elements there are 6 mm, under one pixel at 128), for 128 hemicubes of the 1 400.
+constexpr int kDefaultEmitterHemicubeResolution = 256;
 constexpr int kDefaultShooterSamples = 1;
 constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
@@ -30,6 +34,7 @@ constexpr double kDefaultPatchToElement = 3;
 struct Settings {
   double maxElementEdge = 0, maxPatchEdge = 0;
   int hemicubeResolution = kDefaultHemicubeResolution;
+  int emitterHemicubeResolution = kDefaultEmitterHemicubeResolution;
   double tolerance = 1e-3;
   unsigned seed = 1;
   long maxShots = 0;         ///< 0: no limit

@@ -200,17 +200,28 @@ std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int co
 }
 
 HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize,
-                                 unsigned seed, int workers)
+                                 unsigned seed, int workers, int emitterResolution)
     : mesh_(mesh), geometry_(HemicubeGeometry::fromMesh(mesh)), seed_(seed) {
   if (workers <= 0) workers = std::max(1, int(std::thread::hardware_concurrency()));
   for (int w = 0; w < workers; ++w)
     hemicubes_.push_back(std::make_unique<Hemicube>(geometry_, resolution, sceneSize));
+  if (emitterResolution > 0 && emitterResolution != resolution)
+    for (int w = 0; w < workers; ++w)
+      emitterHemicubes_.push_back(std::make_unique<Hemicube>(geometry_, emitterResolution, sceneSize));
+  for (const Patch& p : mesh.patches) {
+    bool emits = false;
+    for (int e : p.elements) emits = emits || luminance(mesh.emission(e)) > 0;
+    emits_.push_back(emits);
+  }
 }
 
 void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,
                               FormFactors& out, int worker) {
-  hemicubes_[worker]->compute(sample.point, sample.normal, hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)),
-                     out, mesh_.patches[patch].elements);
+  auto& hemicube = emits_[size_t(patch)] && !emitterHemicubes_.empty() ? emitterHemicubes_[worker]
+                                                                       : hemicubes_[worker];
+  hemicube->compute(sample.point, sample.normal,
+                    hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)), out,
+                    mesh_.patches[patch].elements);
 }
 
 ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,

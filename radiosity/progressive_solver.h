@@ -38,12 +38,14 @@ class FactorSource {
 };
 
 /// Hemicubes over the whole mesh, turned by (seed, patch, sample), the patch's own elements
-/// excluded.
+/// excluded. Emitting patches may use a finer resolution: direct light carries the sharpest
+/// detail (shadows, the floor at a block's base), and emitters shoot from few points.
 class HemicubeFactors : public FactorSource {
  public:
   /// workers: hemicubes that may render at once (0: one per hardware thread).
+  /// emitterResolution: for emitting patches (0: `resolution`).
   HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed,
-                  int workers = 0);
+                  int workers = 0, int emitterResolution = 0);
   void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
                int worker = 0) override;
   int workers() const override { return int(hemicubes_.size()); }
@@ -51,7 +53,9 @@ class HemicubeFactors : public FactorSource {
  private:
   const PatchMesh& mesh_;
   HemicubeGeometry geometry_;
-  std::vector<std::unique_ptr<Hemicube>> hemicubes_;  // one per worker
+  std::vector<std::unique_ptr<Hemicube>> hemicubes_;         // one per worker
+  std::vector<std::unique_ptr<Hemicube>> emitterHemicubes_;  // one per worker, if finer
+  std::vector<bool> emits_;                                   // per patch
   unsigned seed_;
 };
 

@@ -117,7 +117,8 @@ std::vector<NearBase> floorNearBlocks(bool cutContacts, const std::vector<double
   for (const auto& p : mesh.patches) emitterPatches += luminance(mesh.emission(p.elements[0])) > 0;
   SolverOptions options;
   options.maxShots = emitterPatches;
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
+                          settings.emitterHemicubeResolution);
   ProgressiveSolver solver(mesh, factors, options);
   solver.run();
   EXPECT_EQ(solver.patchesNeverShot(), int(mesh.patches.size()) - emitterPatches);
@@ -165,6 +166,86 @@ TEST(ContactTest, FloorNextToTheBlocksMatchesTheExactDirectLight) {
                 100 * cut[i].worstOfUnoccluded, 100 * uncut[i].worstOfUnoccluded);
   EXPECT_LE(cut[0].worstLit, kNearBaseTolerance);
   EXPECT_GT(uncut[0].worstLit, kNearBaseTolerance);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// True when no element of `surface` is crossed by the segment where `coordinate` (0 x, 1 y,
+/// 2 z) equals `at` and `other` runs over [from, to]: the mesh has element edges along it.
+bool meshFollowsLine(const PatchMesh& mesh, int surface, int coordinate, double at, int other,
+                     double from, double to, double tolerance) {
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) != surface) continue;
+    auto c = mesh.corners(e);
+    bool below = false, above = false;
+    double lo = HUGE_VAL, hi = -HUGE_VAL;  // where the line crosses the element, along `other`
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 &p = c[k], &q = c[(k + 1) % 3];
+      double dp = p[coordinate] - at, dq = q[coordinate] - at;
+      below = below || dp < -tolerance;
+      above = above || dp > tolerance;
+      if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance)) {
+        double x = p[other] + (q[other] - p[other]) * dp / (dp - dq);
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+      if (std::abs(dp) <= tolerance) lo = std::min(lo, p[other]), hi = std::max(hi, p[other]);
+    }
+    if (below && above && std::min(hi, to) - std::max(lo, from) > tolerance) return false;
+  }
+  return true;
+}
+
+/// scenes/contacts.json: a 200×200 box sunk 100 into the floor and a board leaning against the
+/// back wall. The floor inside the box is cut away, exactly its footprint; the box's sides are
+/// cut where they pierce the floor; the floor and the wall have element edges along the lines
+/// where the board rests on them, and lose no area to it; the ledger balances.
+TEST(ContactTest, HalfSunkBoxAndLeaningBoard) {
+  Scene scene = loadScene(kScenes + "contacts.json");
+  Settings settings = resolveSettings(scene, SolverBlock{});
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  std::map<std::string, int> index;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) index[scene.surfaces[s].name] = int(s);
+  const double tolerance = 1e-9 * scene.diagonal();
+
+  ASSERT_EQ(mesh.cutAway.size(), 1u);
+  EXPECT_EQ(mesh.cutAway[0].surface, index["floor"]);
+  EXPECT_NEAR(mesh.cutAway[0].area / (200.0 * 200.0), 1.0, 1e-9);
+  std::vector<int> sides;
+  for (int k = 1; k <= 4; ++k) sides.push_back(index["sunk_box_side_" + std::to_string(k)]);
+  std::sort(sides.begin(), sides.end());
+  EXPECT_EQ(mesh.cutAway[0].enclosedBy, sides);
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) != index["floor"]) continue;
+    glm::dvec3 c = mesh.centroid(e);
+    EXPECT_FALSE(c.x > 200 && c.x < 400 && c.z > 300 && c.z < 500) << "floor inside the box";
+  }
+  // The box's sides pierce the floor at y = 0.
+  for (int side : sides) EXPECT_TRUE(meshFollowsLine(mesh, side, 1, 0.0, 0, 200, 400, tolerance) &&
+                                     meshFollowsLine(mesh, side, 1, 0.0, 2, 300, 500, tolerance));
+  // The board rests on the floor along z = 750 and on the back wall along y = 400, x in
+  // [550, 850].
+  EXPECT_TRUE(meshFollowsLine(mesh, index["floor"], 2, 750, 0, 550, 850, tolerance));
+  EXPECT_TRUE(meshFollowsLine(mesh, index["back_wall"], 1, 400, 0, 550, 850, tolerance));
+  // Neither loses area to the board: the floor loses the footprint only.
+  double floorArea = 0, wallArea = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) == index["floor"]) floorArea += mesh.area(e);
+    if (mesh.surface(e) == index["back_wall"]) wallArea += mesh.area(e);
+  }
+  EXPECT_NEAR(floorArea / (1000.0 * 1000 - 200 * 200), 1.0, 1e-9);
+  EXPECT_NEAR(wallArea / (1000.0 * 600), 1.0, 1e-9);
+
+  SolverOptions options;
+  options.maxShots = 60;
+  HemicubeFactors factors(mesh, 64, scene.diagonal(), 1);
+  ProgressiveSolver solver(mesh, factors, options);
+  while (solver.step()) ASSERT_LE(solver.ledger().residual(), 1e-9);
+  EXPECT_EQ(solver.shots(), 60);
 }
 
 }  // namespace

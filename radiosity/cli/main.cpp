@@ -28,6 +28,11 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
                  "default 128)")
       ->check(CLI::Range(2, 8192))
       ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
+  app.add_option("--emitter-hemicube", flags.emitterHemicubeResolution,
+                 "Hemicube resolution for emitting patches, even "
+                 "(solver.emitter_hemicube_resolution; default 256)")
+      ->check(CLI::Range(2, 8192))
+      ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
   app.add_option("--emitter-samples", flags.emitterSamples,
                  "Shooting points on each emitting patch (solver.emitter_samples; default 64)")

@@ -61,7 +61,8 @@ void runSolve(const SolveOptions& o) {
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
   const auto& [scene, settings, mesh] = solvable;
   SolverOptions options = solverOptions(settings);
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
+  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
+                          settings.emitterHemicubeResolution);
   // The reference first, so that the solve's own clock does not count it.
   std::vector<glm::dvec3> reference;
   if (o.reference == "direct")
@@ -115,6 +116,7 @@ void runSolve(const SolveOptions& o) {
   s["max_patch_edge"] = settings.maxPatchEdge;
   s["cut_contacts"] = settings.cutContacts;
   s["hemicube_resolution"] = settings.hemicubeResolution;
+  s["emitter_hemicube_resolution"] = settings.emitterHemicubeResolution;
   s["tolerance"] = settings.tolerance;
   s["seed"] = settings.seed;
   s["max_shots"] = settings.maxShots;
