@@ -248,5 +248,17 @@ TEST(ContactTest, HalfSunkBoxAndLeaningBoard) {
   EXPECT_EQ(solver.shots(), 60);
 }
 
+/// A box from an OBJ file resting on a floor: the floor under it is cut away, face by face
+/// the same as for scene polygons.
+TEST(ContactTest, MeshFileBoxOnAFloor) {
+  Scene scene = loadScene(std::string(RAD_SOURCE_DIR) + "/tests/data/box_on_floor.json");
+  PatchMesh mesh = buildPatchMesh(scene, resolveSettings(scene, SolverBlock{}).mesh());
+  ASSERT_EQ(mesh.cutAway.size(), 1u);
+  EXPECT_EQ(scene.surfaces[mesh.cutAway[0].surface].name, "floor");
+  EXPECT_NEAR(mesh.cutAway[0].area / (100.0 * 100.0), 1.0, 1e-9);
+  ASSERT_EQ(mesh.cutAway[0].enclosedBy.size(), 1u);
+  EXPECT_EQ(scene.surfaces[mesh.cutAway[0].enclosedBy[0]].name, "box");
+}
+
 }  // namespace
 }  // namespace rad
