@@ -71,6 +71,7 @@ struct Piece {
   PlaneFrame frame;
   std::vector<std::vector<int>> rings;
   std::vector<std::array<int, 2>> lines;
+  bool meshFace = false;  ///< a face of a mesh file
 };
 
 /// A uniform grid over point ids, to find the points near a segment.
@@ -279,7 +280,7 @@ class PieceMesher {
       (c < rings ? poly.rings : poly.lines).push_back(std::move(pts));
       (c < rings ? poly.ids : poly.lineIds).push_back(ids[c]);
     }
-    Triangulation2 tri = meshPolygon(poly, maxEdge_, wheres_[p]);
+    Triangulation2 tri = meshPolygon(poly, maxEdge_, wheres_[p], piece.meshFace);
     std::vector<int> global(tri.points.size());
     for (size_t i = 0; i < tri.points.size(); ++i) {
       if (tri.ids[i] >= 0)
@@ -355,6 +356,7 @@ std::vector<Piece> planarPieces(const Scene& scene, PointTable& table,
     for (const auto& polygon : surface.polygons) {
       Piece piece;
       piece.surface = int(s);
+      piece.meshFace = surface.fromMeshFile;
       piece.frame = planeFrame(polygon.outer);
       std::vector<Ring> rings{polygon.outer};
       rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());

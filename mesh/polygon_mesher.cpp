@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <queue>
+#include <set>
 #include <string>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -11,7 +12,6 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include "mesh/error.h"
@@ -31,8 +31,13 @@ using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
 using Criteria = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
 using Face = CDT::Face_handle;
 
-/// Inserts every ring as a closed chain of constraints and every line as an open one.
-void insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
+/// The rings' constraint edges, as vertex pairs (lower first).
+using RingEdges = std::set<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>>;
+
+/// Inserts every ring as a closed chain of constraints and every line as an open one; returns
+/// the rings' edges.
+RingEdges insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
+  RingEdges ringEdges;
   auto chain = [&](const std::vector<glm::dvec2>& points, const std::vector<int>& ids, bool closed) {
     std::vector<CDT::Vertex_handle> vs;
     for (size_t k = 0; k < points.size(); ++k) {
@@ -40,8 +45,12 @@ void insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
       if (ids[k] >= 0 || v->info().id < 0) v->info().id = ids[k];
       vs.push_back(v);
     }
-    for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k)
-      if (vs[k] != vs[(k + 1) % vs.size()]) cdt.insert_constraint(vs[k], vs[(k + 1) % vs.size()]);
+    for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k) {
+      auto a = vs[k], b = vs[(k + 1) % vs.size()];
+      if (a == b) continue;
+      cdt.insert_constraint(a, b);
+      if (closed) ringEdges.insert({std::min(a, b), std::max(a, b)});
+    }
   };
   try {
     for (size_t r = 0; r < polygon.rings.size(); ++r) chain(polygon.rings[r], polygon.ids[r], true);
@@ -50,26 +59,42 @@ void insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
     throw inputError(where, "a simple polygon whose holes lie inside it",
                      "edges that cross each other");
   }
+  return ringEdges;
 }
 
-/// Marks the faces inside the polygon (even-odd over its rings, tested at each face's
-/// centroid; lines inside do not count) and returns one seed point in each connected part of
-/// the inside, parts being split by any constraint.
-std::vector<K::Point_2> markInside(CDT& cdt, const Polygon2& polygon) {
-  std::vector<std::vector<K::Point_2>> rings;
-  for (const auto& ring : polygon.rings) {
-    rings.emplace_back();
-    for (const auto& p : ring) rings.back().emplace_back(p.x, p.y);
-  }
-  auto inside = [&](const K::Point_2& q) {
-    bool in = false;
-    for (const auto& ring : rings)
-      if (ring.size() >= 3 &&
-          CGAL::bounded_side_2(ring.begin(), ring.end(), q, K()) == CGAL::ON_BOUNDED_SIDE)
-        in = !in;
-    return in;
+/// Marks faces by nesting depth across the rings' constraints (odd = inside the polygon minus
+/// its holes; the lines inside do not count) and returns one seed point in each connected part
+/// of the inside, parts being split by any constraint.
+std::vector<K::Point_2> markInside(CDT& cdt, const RingEdges& ringEdges) {
+  auto ringEdge = [&](Face f, int i) {
+    auto a = f->vertex(CDT::cw(i)), b = f->vertex(CDT::ccw(i));
+    return ringEdges.count({std::min(a, b), std::max(a, b)}) > 0;
   };
-  for (auto f : cdt.finite_face_handles()) f->set_in_domain(inside(CGAL::centroid(cdt.triangle(f))));
+  std::map<Face, int> depth;
+  std::queue<Face> frontier, next;  // breadth-first, one nesting level at a time
+  next.push(cdt.infinite_face());
+  depth[cdt.infinite_face()] = 0;
+  int level = 0;
+  while (!next.empty()) {
+    std::swap(frontier, next);
+    while (!frontier.empty()) {
+      Face f = frontier.front();
+      frontier.pop();
+      for (int i = 0; i < 3; ++i) {
+        Face g = f->neighbor(i);
+        if (depth.count(g)) continue;
+        if (ringEdge(f, i)) {
+          depth[g] = level + 1;
+          next.push(g);
+        } else {
+          depth[g] = level;
+          frontier.push(g);
+        }
+      }
+    }
+    ++level;
+  }
+  for (auto f : cdt.finite_face_handles()) f->set_in_domain(depth[f] % 2 == 1);
   std::vector<K::Point_2> seeds;
   std::map<Face, bool> seen;
   for (auto f : cdt.finite_face_handles()) {
@@ -121,14 +146,19 @@ double angleAt(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
 }
 
-/// A lone triangle no longer than maxEdge needs no CGAL at all (mesh files). Its angles are
-/// the input's: refining a thin one for shape only would fill it with tiny elements (a UV
-/// sphere's poles took minutes, or overflowed the stack).
-bool isGoodTriangle(const Polygon2& p, double maxEdge) {
+/// A lone triangle that needs no CGAL at all: no longer than maxEdge and, unless it is a face
+/// of a mesh file, with no angle below the bound. A mesh file's thin faces are kept as they
+/// are: refining them for shape only fills them with tiny elements (a UV sphere's poles took
+/// minutes, or overflowed the stack).
+bool isGoodTriangle(const Polygon2& p, double maxEdge, bool meshFace) {
   if (p.rings.size() != 1 || p.rings[0].size() != 3 || !p.lines.empty()) return false;
   const auto& r = p.rings[0];
-  for (int i = 0; i < 3; ++i)
-    if (std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y) > maxEdge) return false;
+  const double lo = kMeshMinAngleDeg * M_PI / 180, hi = M_PI / 2;  // obtuse: encroached
+  for (int i = 0; i < 3; ++i) {
+    double a = angleAt(r[i], r[(i + 1) % 3], r[(i + 2) % 3]);
+    double len = std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y);
+    if (len > maxEdge || (!meshFace && (a < lo || a > hi))) return false;
+  }
   double cross = (r[1].x - r[0].x) * (r[2].y - r[0].y) - (r[1].y - r[0].y) * (r[2].x - r[0].x);
   return cross > 0;
 }
@@ -137,13 +167,13 @@ bool isGoodTriangle(const Polygon2& p, double maxEdge) {
 
 Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
   CDT cdt;
-  insertRings(cdt, polygon, where);
-  markInside(cdt, polygon);
+  markInside(cdt, insertRings(cdt, polygon, where));
   return extract(cdt);
 }
 
-Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where) {
-  if (isGoodTriangle(polygon, maxEdge)) {
+Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
+                           bool meshFace) {
+  if (isGoodTriangle(polygon, maxEdge, meshFace)) {
     Triangulation2 out;
     out.points = polygon.rings[0];
     out.ids = polygon.ids[0];
@@ -152,8 +182,7 @@ Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::s
     return out;
   }
   CDT cdt;
-  insertRings(cdt, polygon, where);
-  std::vector<K::Point_2> seeds = markInside(cdt, polygon);
+  std::vector<K::Point_2> seeds = markInside(cdt, insertRings(cdt, polygon, where));
   // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
   CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(0.125, maxEdge), true);
   return extract(cdt);

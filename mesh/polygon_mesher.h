@@ -38,7 +38,9 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 
 /// Delaunay refinement: every triangle has edges no longer than maxEdge and angles of at
 /// least kMeshMinAngleDeg wherever the input's angles allow. Boundary segments may be split;
-/// the added points are flagged onBoundary.
-Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where);
+/// the added points are flagged onBoundary. A lone triangle of a mesh file (meshFace) within
+/// maxEdge is kept as it is, whatever its angles.
+Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
+                           bool meshFace = false);
 
 }  // namespace rad

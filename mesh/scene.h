@@ -42,6 +42,7 @@ struct Surface {
   std::string name;
   int material = -1;  ///< index into Scene::materials
   bool twoSided = false;
+  bool fromMeshFile = false;  ///< faces of a mesh file (kept as they are when small enough)
   std::vector<Polygon> polygons;
   std::string where;  ///< "scene.json: surfaces[3]" for messages about this surface
 };

@@ -301,6 +301,7 @@ class SceneReader {
     }
     for (auto& group : groups) {
       Surface surface;
+      surface.fromMeshFile = true;
       surface.twoSided = twoSided;
       surface.where = s.where();
       surface.name = name;

@@ -18,6 +18,8 @@ namespace rad {
 
 namespace {
 
+/// Elements whose normals agree this well lie in one plane.
+constexpr double kSamePlane = 1 - 1e-9;
 /// Below this (relative) determinant the elements' centroids around a vertex are too nearly
 /// collinear for a linear fit.
 constexpr double kFitConditioning = 1e-6;
@@ -28,14 +30,20 @@ constexpr double kFitConditioning = 1e-6;
 /// on either side, and non-negative. False when the centroids are too nearly collinear.
 bool fitAtBoundary(const PatchMesh& m, const std::vector<glm::dvec3>& B, TriMesh::VertexHandle v,
                    glm::dvec3& out) {
+  // The elements round v and their neighbours, in the plane of v's first element (a mesh
+  // file's surface may fold: its other planes do not take part).
   std::vector<int> faces;
-  for (auto f : m.mesh.vf_range(v))
+  glm::dvec3 n(0.0);
+  for (auto f : m.mesh.vf_range(v)) {
+    if (n == glm::dvec3(0.0)) n = m.normal(f.idx());
     for (auto w : m.mesh.fv_range(f))
-      for (auto g : m.mesh.vf_range(w)) faces.push_back(g.idx());
+      for (auto g : m.mesh.vf_range(w))
+        if (glm::dot(m.normal(g.idx()), n) > kSamePlane) faces.push_back(g.idx());
+  }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   if (faces.size() < 3) return false;
-  const glm::dvec3 p = PatchMesh::toGlm(m.mesh.point(v)), n = m.normal(faces[0]);
+  const glm::dvec3 p = PatchMesh::toGlm(m.mesh.point(v));
   const glm::dvec3 u = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
   const glm::dvec3 w = glm::cross(n, u);
   double scale = 0;
@@ -59,8 +67,10 @@ bool fitAtBoundary(const PatchMesh& m, const std::vector<glm::dvec3>& B, TriMesh
   if (!(std::abs(glm::determinant(A / weights)) > kFitConditioning)) return false;
   const glm::dmat3 inverse = glm::inverse(A);
   const glm::dvec3 span = hi - lo;
-  for (int c = 0; c < 3; ++c)
-    out[c] = std::clamp((inverse * rhs[c]).x, std::max(0.0, lo[c] - span[c]), hi[c] + span[c]);
+  for (int c = 0; c < 3; ++c) {
+    const double floor = std::max(0.0, lo[c] - span[c]), ceiling = std::max(floor, hi[c] + span[c]);
+    out[c] = std::clamp((inverse * rhs[c]).x, floor, ceiling);
+  }
   return true;
 }
 
@@ -120,7 +130,7 @@ Camera defaultCamera(const Scene& scene) {
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                  const glm::dvec3& ambient, double exposure, const Camera& camera) {
   std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, B);
-  // The display colour adds ρ·ambient; a vertex takes the mean reflectance of its elements.
+  // The display colour adds ρ·ambient, reconstructed at the vertices like B.
   std::vector<glm::dvec3> display(vertexB);
   if (ambient != glm::dvec3(0.0)) display = vertexRadiosity(mesh, [&] {
     std::vector<glm::dvec3> shown(B);

@@ -12,7 +12,9 @@
 namespace rad {
 
 /// Vertex radiosities for Gouraud display: the area-weighted mean of the elements around each
-/// vertex (vertices belong to one side of one surface, so creases and material edges stay sharp).
+/// vertex, or, on a surface's border, the value at the vertex of a linear fit to the elements
+/// around it and their neighbours (vertices belong to one side of one surface, so creases and
+/// material edges stay sharp).
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
 
 /// The share of non-emitting area at or below the exposure's reference luminance.
