@@ -40,8 +40,11 @@ struct ContactCut {
 /// Cuts `polygon` along `contacts` and leaves out every part of it that the contacts enclose:
 /// a part all of whose edges are contact lines with their solid side towards it, or edges of
 /// the polygon on which another surface stands, provided at least one is such a solid side
-/// (a block standing on a floor, also when pushed into a wall). Contact lines with nothing on
-/// either side stay in the kept polygon as lines.
+/// (a block standing on a floor, also when pushed into a wall or a corner). Contact lines with
+/// kept parts on both sides stay in the kept polygon as lines (a board resting on a wall).
+/// Known limits of this rule: a footprint split by another contact line (overlapping blocks,
+/// a panel through it) keeps the parts not enclosed on every side, and a footprint over
+/// several coplanar pieces (a floor of many faces) is not enclosed in any one of them.
 ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts);
 
 }  // namespace rad

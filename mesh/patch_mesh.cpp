@@ -505,20 +505,39 @@ std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFr
   return patches;
 }
 
-/// Where piece s meets the plane of piece r: the segment of s's polygon in r's plane (its
-/// extreme points along the line of the two planes), if s reaches r's lit side (either side
-/// when r is two-sided) and touches or pierces the plane within `tolerance`. Ends that are
-/// vertices of s keep their ids.
+/// One stretch of a contact line, in 3D; ends that are vertices of the touching piece keep
+/// their ids.
 struct Contact3 {
   glm::dvec3 a, b;
   int aId = -1, bId = -1;
 };
-bool contactOf(const PointTable& table, const Piece& r, bool rTwoSided, const Piece& s,
-               double tolerance, Contact3& out) {
+
+/// True when q, a point of s's plane, lies inside piece s or within `tolerance` of its border.
+bool insideOrOn(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
+  const glm::dvec2 x = s.frame.project(q);
+  bool inside = false;
+  for (const auto& ring : s.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const glm::dvec2 a = s.frame.project(table[ring[k]]);
+      const glm::dvec2 b = s.frame.project(table[ring[(k + 1) % ring.size()]]);
+      const glm::dvec2 d = b - a;
+      const double t = std::clamp(glm::dot(x - a, d) / glm::dot(d, d), 0.0, 1.0);
+      if (glm::length(a + d * t - x) <= tolerance) return true;
+      if ((a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * d.x / d.y) inside = !inside;
+    }
+  return inside;
+}
+
+/// Where piece s meets the plane of piece r, if s reaches r's lit side (either side when r is
+/// two-sided) and touches or pierces the plane within `tolerance`: the stretches of the line of
+/// the two planes that lie in s (one per stretch, so a wall with a doorway standing on a floor
+/// gives two).
+std::vector<Contact3> contactsOf(const PointTable& table, const Piece& r, bool rTwoSided,
+                                 const Piece& s, double tolerance) {
   const glm::dvec3 &nr = r.frame.normal, &ns = s.frame.normal;
-  if (std::abs(glm::dot(nr, ns)) > 1 - 1e-9) return false;  // parallel planes
+  if (std::abs(glm::dot(nr, ns)) > 1 - 1e-9) return {};  // parallel planes
   double lo = HUGE_VAL, hi = -HUGE_VAL;
-  std::vector<std::pair<glm::dvec3, int>> on;  // points of s in r's plane
+  std::vector<std::pair<glm::dvec3, int>> on;  // points of s's border in r's plane
   for (const auto& ring : s.rings) {
     for (size_t k = 0; k < ring.size(); ++k) {
       const glm::dvec3 &p = table[ring[k]], &q = table[ring[(k + 1) % ring.size()]];
@@ -531,16 +550,24 @@ bool contactOf(const PointTable& table, const Piece& r, bool rTwoSided, const Pi
     }
   }
   const bool lit = hi > tolerance || (rTwoSided && lo < -tolerance);
-  if (!lit || lo > tolerance || hi < -tolerance || on.size() < 2) return false;
-  const glm::dvec3 along = glm::cross(nr, ns);
-  size_t first = 0, last = 0;
-  for (size_t i = 1; i < on.size(); ++i) {
-    if (glm::dot(along, on[i].first) < glm::dot(along, on[first].first)) first = i;
-    if (glm::dot(along, on[i].first) > glm::dot(along, on[last].first)) last = i;
+  if (!lit || lo > tolerance || hi < -tolerance || on.size() < 2) return {};
+  const glm::dvec3 along = glm::normalize(glm::cross(nr, ns));
+  std::sort(on.begin(), on.end(), [&](const auto& x, const auto& y) {
+    return glm::dot(along, x.first) < glm::dot(along, y.first);
+  });
+  // Stretches between consecutive points whose middles lie in s, joined where they meet.
+  std::vector<Contact3> out;
+  for (size_t i = 0; i + 1 < on.size(); ++i) {
+    const glm::dvec3 &p = on[i].first, &q = on[i + 1].first;
+    if (glm::length(q - p) <= tolerance || !insideOrOn(table, s, (p + q) * 0.5, tolerance)) continue;
+    if (!out.empty() && glm::length(out.back().b - p) <= tolerance) {
+      out.back().b = q;
+      out.back().bId = on[i + 1].second;
+    } else {
+      out.push_back({p, q, on[i].second, on[i + 1].second});
+    }
   }
-  if (glm::length(on[last].first - on[first].first) <= tolerance) return false;  // a point
-  out = {on[first].first, on[last].first, on[first].second, on[last].second};
-  return true;
+  return out;
 }
 
 /// Cuts every piece along the lines where other pieces touch or pierce it (a block standing
@@ -552,16 +579,15 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
                    std::vector<std::string>& wheres, double tolerance,
                    std::set<std::pair<int, int>>& across, PatchMesh& out) {
   const size_t n = pieces.size();
+  const std::vector<Piece> original = pieces;  // contacts come from the uncut pieces
   // Pieces by bounding box, in a grid over the scene, to find the ones that may touch.
   std::vector<glm::dvec3> lo(n, glm::dvec3(HUGE_VAL)), hi(n, glm::dvec3(-HUGE_VAL));
   glm::dvec3 sceneLo(HUGE_VAL), sceneHi(-HUGE_VAL);
-  std::vector<int> points;
   for (size_t p = 0; p < n; ++p)
     for (const auto& ring : pieces[p].rings)
       for (int id : ring) {
         lo[p] = glm::min(lo[p], table[id] - tolerance);
         hi[p] = glm::max(hi[p], table[id] + tolerance);
-        points.push_back(id);
       }
   for (size_t p = 0; p < n; ++p) sceneLo = glm::min(sceneLo, lo[p]), sceneHi = glm::max(sceneHi, hi[p]);
   const int cells = std::clamp(int(2 * std::cbrt(double(n))), 1, 64);
@@ -579,67 +605,86 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
       for (int y = a.y; y <= b.y; ++y)
         for (int z = a.z; z <= b.z; ++z) at(x, y, z).push_back(int(p));
   }
-  // New points merge with existing ones within the tolerance.
-  PointGrid near(table, points);
-  std::vector<int> made;
-  auto snap = [&](const glm::dvec3& x) {
+  // New points merge with a corner of the two pieces involved, or with a point made earlier,
+  // within the tolerance (so that both pieces at a contact share their points).
+  std::unordered_map<uint64_t, std::vector<int>> made;  // by cell of size `tolerance`
+  auto cellKey = [&](const glm::dvec3& x, int dx, int dy, int dz) {
+    return uint64_t(int64_t(std::floor(x.x / tolerance)) + dx) * 73856093u ^
+           uint64_t(int64_t(std::floor(x.y / tolerance)) + dy) * 19349663u ^
+           uint64_t(int64_t(std::floor(x.z / tolerance)) + dz) * 83492791u;
+  };
+  auto snap = [&](const glm::dvec3& x, int r, int s) {
     int found = -1;
     double best = tolerance;
-    near.visit(x - tolerance, x + tolerance, [&](int id) {
-      double d = glm::length(table[id] - x);
-      if (d <= best) best = d, found = id;
-    });
-    for (int id : made) {
-      double d = glm::length(table[id] - x);
-      if (d <= best) best = d, found = id;
-    }
+    for (int p : {r, s})
+      for (const auto& ring : original[size_t(p)].rings)
+        for (int id : ring)
+          if (glm::length(table[id] - x) <= best) best = glm::length(table[id] - x), found = id;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto it = made.find(cellKey(x, dx, dy, dz));
+          if (it == made.end()) continue;
+          for (int id : it->second)
+            if (glm::length(table[id] - x) <= best) best = glm::length(table[id] - x), found = id;
+        }
     if (found >= 0) return found;
-    made.push_back(table.id(x));
-    return made.back();
+    const int id = table.id(x);
+    made[cellKey(x, 0, 0, 0)].push_back(id);
+    return id;
   };
 
-  const std::vector<Piece> original = pieces;  // contacts come from the uncut pieces
+  // The pieces whose boxes meet piece r's, each once.
   std::vector<int> stamp(n, -1);
-  std::vector<bool> gone(n, false);
-  for (size_t r = 0; r < n; ++r) {
-    Piece& piece = pieces[r];
-    const bool twoSided = scene.surfaces[piece.surface].twoSided;
-    std::vector<ContactLine2> lines;
-    std::vector<int> from;  // the surface each line comes from
+  auto candidates = [&](size_t r) {
+    std::vector<int> out;
     glm::ivec3 a, b;
     cellRange(r, a, b);
     for (int x = a.x; x <= b.x; ++x)
       for (int y = a.y; y <= b.y; ++y)
         for (int z = a.z; z <= b.z; ++z)
           for (int s : at(x, y, z)) {
-            if (s == int(r) || stamp[s] == int(r)) continue;
-            stamp[s] = int(r);
-            if (glm::any(glm::lessThan(hi[s], lo[r])) || glm::any(glm::lessThan(hi[r], lo[s]))) continue;
-            Contact3 c;
-            if (!contactOf(table, original[r], twoSided, original[s], tolerance, c)) continue;
-            // Only lines that come near the piece (a floor's plane crosses every face of a
-            // mesh standing on it, far from most of them).
-            if (glm::any(glm::lessThan(glm::max(c.a, c.b), lo[r])) ||
-                glm::any(glm::lessThan(hi[r], glm::min(c.a, c.b))))
-              continue;
-            ContactLine2 line;
-            line.a = piece.frame.project(c.a);
-            line.b = piece.frame.project(c.b);
-            line.aId = c.aId >= 0 ? c.aId : snap(c.a);
-            line.bId = c.bId >= 0 ? c.bId : snap(c.b);
-            // The solid side: behind s, unless light may be on both sides of s or of r.
-            if (!twoSided && !scene.surfaces[original[s].surface].twoSided) {
-              const glm::dvec3 &nr = piece.frame.normal, &ns = original[s].frame.normal;
-              const glm::dvec3 behind = -(ns - glm::dot(ns, nr) * nr);
-              const glm::dvec2 w(glm::dot(behind, piece.frame.u), glm::dot(behind, piece.frame.v));
-              const glm::dvec2 d = line.b - line.a;
-              line.solid = glm::dot(w, glm::dvec2(-d.y, d.x)) > 0 ? 1 : -1;
-            }
-            lines.push_back(line);
-            from.push_back(original[s].surface);
+            if (s == int(r) || stamp[size_t(s)] == int(r)) continue;
+            stamp[size_t(s)] = int(r);
+            if (!glm::any(glm::lessThan(hi[size_t(s)], lo[r])) &&
+                !glm::any(glm::lessThan(hi[r], lo[size_t(s)])))
+              out.push_back(s);
           }
+    return out;
+  };
+  std::vector<bool> gone(n, false);
+  for (size_t r = 0; r < n; ++r) {
+    Piece& piece = pieces[r];
+    const bool twoSided = scene.surfaces[piece.surface].twoSided;
+    std::vector<ContactLine2> lines;
+    std::vector<int> from;  // the surface each line comes from
+    for (int s : candidates(r)) {
+      for (const Contact3& c : contactsOf(table, original[r], twoSided, original[s], tolerance)) {
+        // Only lines that come near the piece (a floor's plane crosses every face of a mesh
+        // standing on it, far from most of them).
+        if (glm::any(glm::lessThan(glm::max(c.a, c.b), lo[r])) ||
+            glm::any(glm::lessThan(hi[r], glm::min(c.a, c.b))))
+          continue;
+        ContactLine2 line;
+        line.aId = c.aId >= 0 ? c.aId : snap(c.a, int(r), s);
+        line.bId = c.bId >= 0 ? c.bId : snap(c.b, int(r), s);
+        line.a = piece.frame.project(table[line.aId]);
+        line.b = piece.frame.project(table[line.bId]);
+        // The solid side: behind s, unless light may be on both sides of s or of r.
+        if (!twoSided && !scene.surfaces[original[s].surface].twoSided) {
+          const glm::dvec3 &nr = piece.frame.normal, &ns = original[s].frame.normal;
+          const glm::dvec3 behind = -(ns - glm::dot(ns, nr) * nr);
+          const glm::dvec2 w(glm::dot(behind, piece.frame.u), glm::dot(behind, piece.frame.v));
+          const glm::dvec2 d = line.b - line.a;
+          line.solid = glm::dot(w, glm::dvec2(-d.y, d.x)) > 0 ? 1 : -1;
+        }
+        lines.push_back(line);
+        from.push_back(original[s].surface);
+      }
+    }
     // Lines along the piece's own edges (a wall standing on a floor's edge, a mesh's folds)
-    // cut nothing and cannot close a part by themselves: no arrangement needed.
+    // cut nothing; unless one has its solid side inwards (the piece may lie under a block),
+    // no arrangement is needed.
     auto alongEdge = [&](const ContactLine2& line) {
       for (const auto& ring : original[r].rings)
         for (size_t k = 0; k < ring.size(); ++k) {
@@ -654,7 +699,15 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
       return false;
     };
     out.contactLines += int(lines.size());
-    if (std::all_of(lines.begin(), lines.end(), alongEdge)) continue;
+    auto solidInwards = [&](const ContactLine2& line) {
+      if (line.solid == 0) return false;
+      const glm::dvec2 d = line.b - line.a, left(-d.y, d.x);
+      const glm::dvec2 probe = (line.a + line.b) * 0.5 + left * (1e-3 * line.solid);
+      return insideOrOn(table, original[r], piece.frame.lift(probe), 0.0);
+    };
+    if (std::all_of(lines.begin(), lines.end(), alongEdge) &&
+        std::none_of(lines.begin(), lines.end(), solidInwards))
+      continue;
     Polygon2 poly;
     for (const auto& ring : piece.rings) {
       poly.rings.emplace_back();
@@ -662,7 +715,9 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
       poly.ids.push_back(ring);
     }
     ContactCut cut = cutAlongContacts(poly, lines);
-    auto idOf = [&](const glm::dvec2& q, int id) { return id >= 0 ? id : snap(piece.frame.lift(q)); };
+    auto idOf = [&](const glm::dvec2& q, int id) {
+      return id >= 0 ? id : snap(piece.frame.lift(q), int(r), int(r));
+    };
     piece.rings.clear();
     for (size_t k = 0; k < cut.kept.rings.size(); ++k) {
       std::vector<int> ring;
@@ -729,6 +784,14 @@ PatchMesh::PatchMesh() {
   mesh.add_property(area_, "area");
   mesh.add_property(reflectance_, "reflectance");
   mesh.add_property(emission_, "emission");
+}
+
+bool PatchMesh::emits(int p) const {
+  for (int e : patches[size_t(p)].elements) {
+    const glm::dvec3 E = emission(e);
+    if (E.x > 0 || E.y > 0 || E.z > 0) return true;
+  }
+  return false;
 }
 
 glm::dvec3 PatchMesh::centroid(int e) const {

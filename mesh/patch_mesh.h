@@ -80,6 +80,8 @@ class PatchMesh {
   glm::dvec3 emission(int e) const { return toGlm(mesh.property(emission_, face(e))); }
   glm::dvec3 normal(int e) const { return toGlm(mesh.normal(face(e))); }
   glm::dvec3 centroid(int e) const;
+  /// Whether some element of patch p emits.
+  bool emits(int p) const;
   /// The three corners of element e, counter-clockwise seen from its lit side.
   std::array<glm::dvec3, 3> corners(int e) const;
 
@@ -100,8 +102,9 @@ class PatchMesh {
 
 /// Meshes every surface of the scene: planar pieces (non-planar polygons are triangulated,
 /// with a warning) are cut along the lines where other surfaces touch or pierce them, and
-/// what those surfaces enclose is left out (cutAway); the pieces are refined by Delaunay refinement so that no element edge exceeds
-/// settings.maxElementEdge and angles stay above 20.7 degrees where the input allows;
+/// what those surfaces enclose is left out (cutAway); the pieces are refined by Delaunay
+/// refinement so that no element edge exceeds settings.maxElementEdge and angles stay above
+/// 20.7 degrees where the input allows;
 /// neighbouring surfaces are split at the same points along shared edges; elements are then
 /// grouped into patches no wider than settings.maxPatchEdge. Two-sided surfaces get a second,
 /// opposite-facing copy. Throws InputError for polygons that cannot be meshed.

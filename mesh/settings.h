@@ -23,7 +23,7 @@ constexpr double kDefaultFactorCacheMb = 256;
 constexpr int kDefaultHemicubeResolution = 128;
 /// Emitters shoot at twice that: measured on the Cornell box's floor 4 mm from the blocks,
 /// the direct light's worst error over three seeds is 3.5–7.5 % at 128, 1.9–2.8 % at 256
-/// (elements there are 6 mm, under one pixel at 128), for 128 hemicubes of the 1 400.
+/// (elements there are 6 mm, under one pixel at 128), for 128 hemicubes of about 1 200.
 constexpr int kDefaultEmitterHemicubeResolution = 256;
 constexpr int kDefaultShooterSamples = 1;
 constexpr int kDefaultEmitterSamples = 64;

@@ -129,9 +129,7 @@ uint64_t SampleCounter::key(const std::array<int64_t, 3>& c) {
 
 int SampleCounter::operator()(int patch) const {
   const Patch& p = mesh_.patches[patch];
-  bool emits = false;
-  for (int e : p.elements) emits = emits || luminance(mesh_.emission(e)) > 0;
-  if (emits) return options_.emitterSamples;
+  if (mesh_.emits(patch)) return options_.emitterSamples;
   const int fewest = options_.shooterSamples;
   const int most = std::max(fewest, options_.emitterSamples);
   if (options_.proximitySamples <= 0) return fewest;
@@ -208,11 +206,7 @@ HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double s
   if (emitterResolution > 0 && emitterResolution != resolution)
     for (int w = 0; w < workers; ++w)
       emitterHemicubes_.push_back(std::make_unique<Hemicube>(geometry_, emitterResolution, sceneSize));
-  for (const Patch& p : mesh.patches) {
-    bool emits = false;
-    for (int e : p.elements) emits = emits || luminance(mesh.emission(e)) > 0;
-    emits_.push_back(emits);
-  }
+  for (int p = 0; p < int(mesh.patches.size()); ++p) emits_.push_back(mesh.emits(p));
 }
 
 void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,

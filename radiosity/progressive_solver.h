@@ -181,8 +181,8 @@ class ProgressiveSolver {
 /// one channel then carries the whole solution.
 bool isGrey(const PatchMesh& mesh);
 
-/// `count` stratified samples over a patch. Each element is cut into m×m congruent triangles, m chosen so that the patch
-/// has at least `count` parts spread by area; the parts are split into `count` strata of
+/// `count` stratified samples over a patch. Each element is cut into m×m congruent triangles,
+/// m chosen so that the patch has at least `count` parts spread by area; the parts are split into `count` strata of
 /// about equal area by recursive bisection, and each stratum shoots its parts' shares of
 /// their elements' power from its centroid. Each element's weights sum to 1.
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count);

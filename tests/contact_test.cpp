@@ -260,5 +260,37 @@ TEST(ContactTest, MeshFileBoxOnAFloor) {
   EXPECT_EQ(scene.surfaces[mesh.cutAway[0].enclosedBy[0]].name, "box");
 }
 
+/// A wall with a doorway standing on a floor touches it along two stretches, not across the
+/// doorway: the floor gets element edges under the wall and none across the doorway, and
+/// nothing is cut away (the wall's back faces one side of the floor, which stays open).
+TEST(ContactTest, WallWithADoorwayTouchesAlongTwoStretches) {
+  Scene scene;
+  scene.materials.resize(2);
+  scene.materials[0].reflectance = glm::dvec3(0.5);
+  scene.materials[1].emission = glm::dvec3(1.0);
+  auto surface = [&](const std::string& name, int material, Ring outer) {
+    Surface s;
+    s.name = name;
+    s.material = material;
+    s.where = name;
+    s.polygons.push_back({std::move(outer), {}});
+    scene.surfaces.push_back(std::move(s));
+  };
+  surface("floor", 0, {{0, 0, 0}, {0, 0, 1000}, {1000, 0, 1000}, {1000, 0, 0}});
+  surface("light", 1, {{400, 800, 400}, {600, 800, 400}, {600, 800, 600}, {400, 800, 600}});
+  surface("wall", 0, {{100, 0, 500}, {400, 0, 500}, {400, 200, 500}, {600, 200, 500},
+                      {600, 0, 500}, {900, 0, 500}, {900, 300, 500}, {100, 300, 500}});
+  PatchMesh mesh = buildPatchMesh(scene, {60, 180, true});
+  const double tolerance = 1e-9 * scene.diagonal();
+  EXPECT_TRUE(mesh.cutAway.empty());
+  EXPECT_TRUE(meshFollowsLine(mesh, 0, 2, 500, 0, 100, 400, tolerance));
+  EXPECT_TRUE(meshFollowsLine(mesh, 0, 2, 500, 0, 600, 900, tolerance));
+  EXPECT_FALSE(meshFollowsLine(mesh, 0, 2, 500, 0, 420, 580, tolerance));
+  double floorArea = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (mesh.surface(e) == 0) floorArea += mesh.area(e);
+  EXPECT_NEAR(floorArea / 1e6, 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace rad

@@ -29,7 +29,6 @@ PatchMesh meshScene(const Scene& scene, double element, double patch) {
   return buildPatchMesh(scene, MeshSettings{element, patch});
 }
 
-/// Element area per surface (front side only).
 /// Meshed area per surface (one side), plus what contacts cut away when `withCut`.
 std::vector<double> surfaceAreas(const PatchMesh& m, size_t surfaces, bool withCut = true) {
   std::vector<double> area(surfaces, 0.0);

@@ -59,6 +59,11 @@ SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
   s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
   printWarnings(s.scene.warnings);
   printWarnings(s.mesh.warnings);
+  bool emits = false;
+  for (int e = 0; e < s.mesh.elementCount() && !emits; ++e) emits = luminance(s.mesh.emission(e)) > 0;
+  if (!emits)
+    throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
+                     "every emitting surface enclosed by others and cut away");
   return s;
 }
 
