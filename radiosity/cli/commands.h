@@ -2,6 +2,7 @@
 // The subcommands of the `radiosity` command line. Each registers its options on the app
 // and returns the function that runs it; errors are thrown (InputError) and reported by main.
 #include <functional>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 
@@ -40,6 +41,8 @@ SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags);
 
 /// The solver options the settings give.
 SolverOptions solverOptions(const Settings& settings);
+/// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
+std::unique_ptr<HemicubeFactors> hemicubeFactors(const SolvableScene& s, int workers);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

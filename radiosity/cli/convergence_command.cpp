@@ -102,8 +102,8 @@ void runConvergence(const ConvergenceOptions& o) {
   const auto& [scene, settings, mesh] = solvable;
   SolverOptions options = solverOptions(settings);
   // One worker, so that every method's time is single-threaded and comparable.
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 1,
-                          settings.emitterHemicubeResolution);
+  std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 1);
+  HemicubeFactors& factors = *hemicubes;
 
   auto t0 = std::chrono::steady_clock::now();
   TransportMatrix system(mesh, factors, options);

@@ -80,6 +80,12 @@ SolverOptions solverOptions(const Settings& settings) {
   return options;
 }
 
+std::unique_ptr<HemicubeFactors> hemicubeFactors(const SolvableScene& s, int workers) {
+  return std::make_unique<HemicubeFactors>(s.mesh, s.settings.hemicubeResolution,
+                                           s.scene.diagonal(), s.settings.seed, workers,
+                                           s.settings.emitterHemicubeResolution);
+}
+
 void printWarnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) std::cerr << "radiosity: warning: " << w << "\n";
 }

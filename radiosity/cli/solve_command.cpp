@@ -61,8 +61,8 @@ void runSolve(const SolveOptions& o) {
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
   const auto& [scene, settings, mesh] = solvable;
   SolverOptions options = solverOptions(settings);
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
-                          settings.emitterHemicubeResolution);
+  std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 0);
+  HemicubeFactors& factors = *hemicubes;
   // The reference first, so that the solve's own clock does not count it.
   std::vector<glm::dvec3> reference;
   if (o.reference == "direct")
