@@ -33,10 +33,6 @@ constexpr double kContactTolerance = 1e-5;
 /// Parts cut away that are smaller than this share of their piece are round-off (slivers
 /// between nearly coincident lines) and go unreported.
 constexpr double kNegligibleCut = 1e-9;
-/// Contact lines across a surface (a block's base on a floor) are split into parts this many
-/// times shorter than the element edge; Delaunay refinement grades the elements from there,
-/// where the light changes fastest.
-constexpr double kContactRefinement = 8;
 /// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
 constexpr int kMaxAgreementRounds = 200;
 
@@ -833,7 +829,7 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
 
   int rounds = 0;
   PieceMesher mesher(table, pieces, settings.maxElementEdge, tolerance, wheres, across,
-                     kContactRefinement);
+                     settings.contactGrading);
   auto elementTriangles = mesher.run(rounds);
   out.stats.rounds = rounds;
   if (mesher.unresolvedPoints())

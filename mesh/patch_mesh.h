@@ -19,11 +19,17 @@ struct MeshTraits : public OpenMesh::DefaultTraits {
 /// Double precision so that scenes at kilometre or micrometre scale mesh alike.
 using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 
+/// Contact lines across a surface (a block's base on a floor) are split into parts this many
+/// times shorter than the element edge, and Delaunay refinement grades the elements from
+/// there, where the light changes fastest; unless adaptive refinement grades them instead.
+constexpr double kDefaultContactGrading = 8;
+
 /// Lengths in scene units.
 struct MeshSettings {
   double maxElementEdge = 0;  ///< no element edge is longer
   double maxPatchEdge = 0;    ///< no patch is wider (largest distance between its points)
   bool cutContacts = true;    ///< cut surfaces where others touch them; leave out what they enclose
+  double contactGrading = kDefaultContactGrading;  ///< 1: contact lines meshed like the rest
 };
 
 /// A shooter: a connected group of elements of one surface side.
@@ -89,6 +95,7 @@ class PatchMesh {
   void setElement(int e, int surface, int side, double area, const glm::dvec3& reflectance,
                   const glm::dvec3& emission, const glm::dvec3& normal);
   void setPatch(int e, int patch) { mesh.property(patch_, face(e)) = patch; }
+  void setArea(int e, double area) { mesh.property(area_, face(e)) = area; }
 
   static glm::dvec3 toGlm(const OpenMesh::Vec3d& v) { return {v[0], v[1], v[2]}; }
   static OpenMesh::Vec3d toOpenMesh(const glm::dvec3& v) { return {v.x, v.y, v.z}; }

@@ -92,7 +92,8 @@ struct SolverBlock {
   std::optional<int> hemicubeResolution, emitterHemicubeResolution, emitterSamples, shooterSamples;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;
-  std::optional<bool> cutContacts;
+  std::optional<bool> cutContacts, adaptive, vertexDirect;
+  std::optional<double> minElementEdge, contrast;
 };
 
 struct Scene {

@@ -484,7 +484,8 @@ class SceneReader {
     n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution",
                     "emitter_hemicube_resolution", "tolerance",
                     "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
-                    "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts"});
+                    "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts",
+                    "adaptive", "min_element_edge", "contrast", "vertex_direct"});
     SolverBlock& b = scene_.solver;
     if (n.has("max_element_edge"))
       b.maxElementEdge = n["max_element_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
@@ -495,6 +496,11 @@ class SceneReader {
     if (n.has("overshoot")) b.overshoot = n["overshoot"].number(1, 2, "[1, 2]");
     if (n.has("exposure")) b.exposure = n["exposure"].number(1e-300, HUGE_VAL, "(0, inf)");
     if (n.has("cut_contacts")) b.cutContacts = n["cut_contacts"].boolean();
+    if (n.has("adaptive")) b.adaptive = n["adaptive"].boolean();
+    if (n.has("vertex_direct")) b.vertexDirect = n["vertex_direct"].boolean();
+    if (n.has("min_element_edge"))
+      b.minElementEdge = n["min_element_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
+    if (n.has("contrast")) b.contrast = n["contrast"].number(1e-6, 1, "[1e-6, 1]");
     if (n.has("proximity_samples"))
       b.proximitySamples = n["proximity_samples"].number(0, 65536, "[0, 65536]");
     if (n.has("factor_cache_mb"))

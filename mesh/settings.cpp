@@ -13,6 +13,11 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
                         s.maxElementEdge * kDefaultPatchToElement);
   s.cutContacts = pick(flags.cutContacts, file.cutContacts, true);
+  s.adaptive = pick(flags.adaptive, file.adaptive, true);
+  s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge,
+                          s.maxElementEdge / kDefaultMinElementRatio);
+  s.contrast = pick(flags.contrast, file.contrast, kDefaultContrast);
+  s.vertexDirect = pick(flags.vertexDirect, file.vertexDirect, true);
   s.emitterHemicubeResolution = pick(flags.emitterHemicubeResolution,
                                      file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
   s.hemicubeResolution =

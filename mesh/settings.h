@@ -28,6 +28,11 @@ constexpr int kDefaultEmitterHemicubeResolution = 256;
 constexpr int kDefaultShooterSamples = 1;
 constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
+/// Default minimum element edge of adaptive refinement: the element edge divided by this.
+constexpr double kDefaultMinElementRatio = 8;
+/// Default contrast threshold of adaptive refinement, in display units (the sRGB-encoded
+/// value in [0, 1] of the exposed radiosity): about five of 255 display levels.
+constexpr double kDefaultContrast = 0.02;
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
 
@@ -47,8 +52,17 @@ struct Settings {
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
 
   bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
+  /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to
+  /// minElementEdge; the contact lines are then graded by that refinement, not beforehand.
+  bool adaptive = true;
+  double minElementEdge = 0;
+  double contrast = kDefaultContrast;  ///< display units
+  /// Show direct light computed at the vertices by rays (radiosity/direct_light.h).
+  bool vertexDirect = true;
 
-  MeshSettings mesh() const { return {maxElementEdge, maxPatchEdge, cutContacts}; }
+  MeshSettings mesh() const {
+    return {maxElementEdge, maxPatchEdge, cutContacts, adaptive ? 1.0 : kDefaultContactGrading};
+  }
 };
 
 /// Merges `flags` over `scene.solver` over the defaults.

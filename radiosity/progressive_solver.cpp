@@ -225,11 +225,13 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
   const int n = mesh.elementCount();
   B_.resize(n);
   dB_.resize(n);
+  direct_.assign(n, glm::dvec3(0.0));
+  dE_.resize(n);
   rho_.resize(n);
   area_.resize(n);
   patchOf_.resize(n);
   for (int e = 0; e < n; ++e) {
-    B_[e] = dB_[e] = mesh.emission(e);
+    B_[e] = dB_[e] = dE_[e] = mesh.emission(e);
     rho_[e] = mesh.reflectance(e);
     area_[e] = mesh.area(e);
     patchOf_[e] = mesh.patch(e);
@@ -365,6 +367,13 @@ glm::dvec3 ProgressiveSolver::deliver(const glm::dvec3& power, const FormFactors
   return glm::dvec3(arrived);
 }
 
+void ProgressiveSolver::deliverDirect(const glm::dvec3& power, const FormFactors& row) {
+  for (size_t k = 0; k < row.elements.size(); ++k) {
+    const int j = row.elements[k];
+    direct_[j] += rho_[j] * power * (row.factors[k] / area_[j]);
+  }
+}
+
 void ProgressiveSolver::shoot(int patch) {
   const Patch& p = mesh_.patches[patch];
   if (samples_[patch].empty()) {
@@ -373,12 +382,16 @@ void ProgressiveSolver::shoot(int patch) {
   // The power each element sends (ω times its unshot power) is fixed before any sample shoots.
   const double omega = options_.overshoot;
   const auto& samples = samples_[patch];
-  std::vector<glm::dvec3> powers(samples.size(), glm::dvec3(0.0));
+  // The emission part of the unshot power travels the same way and is also kept apart.
+  std::vector<glm::dvec3> powers(samples.size(), glm::dvec3(0.0)), emitted(powers);
   for (size_t index = 0; index < samples.size(); ++index) {
     const ShooterSample& s = samples[index];
-    for (size_t k = 0; k < s.elements.size(); ++k)
+    for (size_t k = 0; k < s.elements.size(); ++k) {
       powers[index] += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
+      emitted[index] += s.weights[k] * area_[s.elements[k]] * dE_[s.elements[k]];
+    }
     powers[index] *= omega;
+    emitted[index] *= omega;
   }
   auto& rows = rows_[patch];
   if (rows.empty()) rows.resize(samples.size());
@@ -391,6 +404,7 @@ void ProgressiveSolver::shoot(int patch) {
     if (power == glm::dvec3(0.0)) continue;
     const FormFactors& row = rows[index].factors;
     glm::dvec3 delivered = grey_ ? deliver<double>(power, row) : deliver<glm::dvec3>(power, row);
+    if (emitted[index] != glm::dvec3(0.0)) deliverDirect(emitted[index], row);
     // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
     ledger_.escaped += power - delivered;
     powerShot_ += std::abs(luminance(power));
@@ -411,6 +425,7 @@ void ProgressiveSolver::shoot(int patch) {
   glm::dvec3 left(0.0);
   for (int e : p.elements) {
     dB_[e] *= (1 - omega);
+    dE_[e] *= (1 - omega);
     left += area_[e] * dB_[e];
   }
   setPatchUnshot(patch, left);

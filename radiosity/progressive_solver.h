@@ -125,6 +125,9 @@ class ProgressiveSolver {
   /// Element radiosity B and unshot radiosity ΔB, per channel.
   const std::vector<glm::dvec3>& radiosity() const { return B_; }
   const std::vector<glm::dvec3>& unshot() const { return dB_; }
+  /// The part of B that came straight from the emitters' emission (first bounce), per
+  /// element: the display replaces it with direct light computed at the vertices by rays.
+  const std::vector<glm::dvec3>& direct() const { return direct_; }
   /// The ambient term of Cohen et al. 1988: (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄), ρ̄ the area-weighted
   /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient.
   glm::dvec3 ambient() const;
@@ -147,6 +150,8 @@ class ProgressiveSolver {
   /// power that arrived. T: double in a grey scene (channel r stands for all), else dvec3.
   template <class T>
   glm::dvec3 deliver(const glm::dvec3& power, const FormFactors& row);
+  /// Adds the emission part of a shot to direct_.
+  void deliverDirect(const glm::dvec3& power, const FormFactors& row);
 
   const PatchMesh& mesh_;
   FactorSource& factors_;
@@ -154,6 +159,7 @@ class ProgressiveSolver {
   SampleCounter counter_;
   std::vector<std::vector<ShooterSample>> samples_;
   std::vector<glm::dvec3> B_, dB_, rho_;
+  std::vector<glm::dvec3> direct_, dE_;  // received from emission; emission not yet shot
   std::vector<double> area_;
   std::vector<int> patchOf_;
   std::vector<glm::dvec3> patchUnshot_;  // Σ A ΔB over the patch's elements

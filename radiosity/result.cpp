@@ -9,6 +9,8 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <glm/common.hpp>
+
 #include "mesh/color.h"
 #include "mesh/error.h"
 #include "mesh/mesh_export.h"
@@ -94,6 +96,17 @@ std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<gl
   return out;
 }
 
+std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<glm::dvec3>& B,
+                                        const VertexDirect* direct) {
+  if (!direct) return vertexRadiosity(m, B);
+  RAD_CHECK(direct->element.size() == B.size() && direct->vertex.size() == m.mesh.n_vertices());
+  std::vector<glm::dvec3> rest(B);
+  for (size_t e = 0; e < B.size(); ++e) rest[e] -= direct->element[e];
+  std::vector<glm::dvec3> out = vertexRadiosity(m, rest);
+  for (size_t v = 0; v < out.size(); ++v) out[v] = glm::max(out[v] + direct->vertex[v], glm::dvec3(0.0));
+  return out;
+}
+
 double autoExposure(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
   std::vector<std::pair<double, double>> lumArea;  // (luminance, area)
   double total = 0;
@@ -128,15 +141,16 @@ Camera defaultCamera(const Scene& scene) {
 }
 
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
-                 const glm::dvec3& ambient, double exposure, const Camera& camera) {
-  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, B);
+                 const glm::dvec3& ambient, double exposure, const Camera& camera,
+                 const VertexDirect* direct) {
+  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, B, direct);
   // The display colour adds ρ·ambient, reconstructed at the vertices like B.
   std::vector<glm::dvec3> display(vertexB);
   if (ambient != glm::dvec3(0.0)) display = vertexRadiosity(mesh, [&] {
     std::vector<glm::dvec3> shown(B);
     for (int e = 0; e < mesh.elementCount(); ++e) shown[e] += mesh.reflectance(e) * ambient;
     return shown;
-  }());
+  }(), direct);
   PlyMesh ply = toPly(mesh);
   char buf[512];
   std::snprintf(buf, sizeof buf,

@@ -17,6 +17,17 @@ namespace rad {
 /// material edges stay sharp).
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
 
+/// Direct light known at the vertices (computed there by rays) and the part of each element's
+/// radiosity it replaces (what the solver's emitters delivered to it).
+struct VertexDirect {
+  std::vector<glm::dvec3> element, vertex;
+};
+
+/// As above, with the direct light taken from the vertices: each element's direct part is
+/// taken out before the reconstruction, and the vertex's own direct light added after.
+std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                                        const VertexDirect* direct);
+
 /// The share of non-emitting area at or below the exposure's reference luminance.
 constexpr double kExposurePercentile = 0.95;
 /// The display value (linear, before sRGB) the reference luminance maps to.
@@ -33,9 +44,11 @@ Camera defaultCamera(const Scene& scene);
 
 /// Writes the result mesh: per vertex position, normal, display colour sRGB(clamp(K·(B + ρ·a)))
 /// and linear radiosity B; per face the surface index and the element's own B. `ambient` (a) is
-/// added to the display colour only (zero once converged). Atomic: temporary file, then rename.
+/// added to the display colour only (zero once converged). With `direct`, vertex radiosities
+/// take their direct light from it. Atomic: temporary file, then rename.
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
-                 const glm::dvec3& ambient, double exposure, const Camera& camera);
+                 const glm::dvec3& ambient, double exposure, const Camera& camera,
+                 const VertexDirect* direct = nullptr);
 
 /// The element radiosities of an earlier result of the same scene and mesh settings, for
 /// comparison. Throws InputError when the file is not such a result (element count, geometry

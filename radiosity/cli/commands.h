@@ -9,6 +9,8 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 #include "mesh/settings.h"
+#include "radiosity/adaptive.h"
+#include "radiosity/direct_light.h"
 #include "radiosity/progressive_solver.h"
 
 namespace rad::cli {
@@ -36,8 +38,15 @@ struct SolvableScene {
   Scene scene;
   Settings settings;
   PatchMesh mesh;
+  /// Direct light at the vertices by rays (null when the scene's emitters are too many for it,
+  /// or settings.vertexDirect is off), and what adaptive refinement did with it.
+  std::unique_ptr<DirectLight> direct;
+  AdaptiveStats adaptive;
 };
 SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags);
+/// Meshes a loaded scene by its settings: the uniform mesh, then adaptive refinement; the
+/// mesher's warnings printed. needsEmitter: an error when contacts cut every emitter away.
+SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter);
 
 /// The solver options the settings give.
 SolverOptions solverOptions(const Settings& settings);

@@ -23,13 +23,12 @@ std::string rgb(const glm::dvec3& c) {
 }
 
 void runInfo(const InfoOptions& o) {
-  Scene scene = loadScene(o.scene);
-  Settings settings = resolveSettings(scene, o.flags);
+  Scene loaded = loadScene(o.scene);
+  printWarnings(loaded.warnings);
   auto start = std::chrono::steady_clock::now();
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  const SolvableScene meshed = meshScene(std::move(loaded), o.flags, false);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
+  const auto& [scene, settings, mesh, direct, adaptive] = meshed;
 
   std::printf("scene       %s%s%s\n", scene.path.c_str(), scene.units.empty() ? "" : ", units ",
               scene.units.c_str());
@@ -71,6 +70,14 @@ void runInfo(const InfoOptions& o) {
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",
               mesh.stats.minAngleDeg, mesh.stats.maxEdge, mesh.stats.maxPatchDiameter);
+  if (settings.adaptive)
+    std::printf("adaptive    %d -> %d elements in %d rounds (min element edge %.6g, contrast %.3g), "
+                "%.3f s\n", adaptive.elementsBefore, adaptive.elementsAfter, adaptive.rounds,
+                settings.minElementEdge, settings.contrast, adaptive.seconds);
+  std::printf("direct      %s\n", direct ? ("at vertices by rays, " + std::to_string(direct->samples()) +
+                                          " points on the emitters, " + std::to_string(direct->rays()) +
+                                          " rays").c_str()
+                                       : "from the hemicubes");
   std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds,
               mesh.stats.rounds);
   std::fflush(stdout);

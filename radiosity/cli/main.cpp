@@ -20,6 +20,20 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--cut-contacts", flags.cutContacts,
                  "Cut surfaces along the lines where others touch them and leave out what those "
                  "enclose, true or false (solver.cut_contacts; default true)");
+  app.add_option("--adaptive", flags.adaptive,
+                 "Refine elements where the direct light changes visibly (penumbrae, contacts), "
+                 "true or false (solver.adaptive; default true)");
+  app.add_option("--min-element-edge", flags.minElementEdge,
+                 "Adaptive refinement stops at elements this small, scene units "
+                 "(solver.min_element_edge; default: element edge / 8)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--contrast", flags.contrast,
+                 "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
+                 "across an element (solver.contrast; default 0.02)")
+      ->check(CLI::Range(1e-6, 1.0));
+  app.add_option("--vertex-direct", flags.vertexDirect,
+                 "Show direct light computed at the vertices by rays to points on the emitters, "
+                 "true or false (solver.vertex_direct; default true)");
 }
 
 void addSolverFlags(CLI::App& app, SolverBlock& flags) {
@@ -50,21 +64,35 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
       ->check(CLI::Range(0.0, 1e9));
 }
 
-SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
-  SolvableScene s{loadScene(path), {}, {}};
-  if (!s.scene.hasEmitter())
-    throw inputError(s.scene.path + ": surfaces", "at least one surface whose material has an emission",
-                     "none (radiosity light comes from emitting surfaces)");
+SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter) {
+  SolvableScene s{std::move(scene), {}, {}, nullptr, {}};
   s.settings = resolveSettings(s.scene, flags);
-  s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
-  printWarnings(s.scene.warnings);
-  printWarnings(s.mesh.warnings);
-  bool emits = false;
-  for (int e = 0; e < s.mesh.elementCount() && !emits; ++e) emits = luminance(s.mesh.emission(e)) > 0;
-  if (!emits)
-    throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
-                     "every emitting surface enclosed by others and cut away");
+  SceneMesh meshed;
+  meshed.mesh = buildPatchMesh(s.scene, s.settings.mesh());
+  printWarnings(meshed.mesh.warnings);
+  // An emitter cut away entirely is an error before any ray is cast.
+  if (needsEmitter) {
+    bool emits = false;
+    for (int e = 0; e < meshed.mesh.elementCount() && !emits; ++e)
+      emits = luminance(meshed.mesh.emission(e)) > 0;
+    if (!emits)
+      throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
+                       "every emitting surface enclosed by others and cut away");
+  }
+  addDirectLight(meshed, s.scene, s.settings);
+  s.mesh = std::move(meshed.mesh);
+  s.direct = std::move(meshed.direct);
+  s.adaptive = meshed.adaptive;
   return s;
+}
+
+SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
+  Scene scene = loadScene(path);
+  if (!scene.hasEmitter())
+    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission",
+                     "none (radiosity light comes from emitting surfaces)");
+  printWarnings(scene.warnings);
+  return meshScene(std::move(scene), flags, true);
 }
 
 SolverOptions solverOptions(const Settings& settings) {

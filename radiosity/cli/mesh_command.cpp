@@ -18,11 +18,11 @@ struct MeshOptions {
 
 void runMesh(const MeshOptions& o) {
   checkOutputPath(o.output);
-  Scene scene = loadScene(o.scene);
-  Settings settings = resolveSettings(scene, o.flags);
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
+  Scene loaded = loadScene(o.scene);
+  printWarnings(loaded.warnings);
+  const SolvableScene meshed = meshScene(std::move(loaded), o.flags, false);
+  const PatchMesh& mesh = meshed.mesh;
+  const Scene& scene = meshed.scene;
   PlyMesh ply = toPly(mesh);
   ply.comments.push_back("radiosity mesh of " + scene.path);
   ply.face.push_back(faceIntColumn(mesh, "patch", &PatchMesh::patch));

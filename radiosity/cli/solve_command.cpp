@@ -59,7 +59,7 @@ void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
-  const auto& [scene, settings, mesh] = solvable;
+  const auto& [scene, settings, mesh, direct, adaptive] = solvable;
   SolverOptions options = solverOptions(settings);
   std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 0);
   HemicubeFactors& factors = *hemicubes;
@@ -126,7 +126,21 @@ void runSolve(const SolveOptions& o) {
   s["shooter_samples"] = options.shooterSamples;
   s["proximity_samples"] = options.proximitySamples;
   s["factor_cache_mb"] = settings.factorCacheMb;
+  s["adaptive"] = settings.adaptive;
+  s["min_element_edge"] = settings.minElementEdge;
+  s["contrast"] = settings.contrast;
+  s["vertex_direct"] = settings.vertexDirect;
   report["settings"] = s;
+  // What refinement did, and the rays behind it and behind the direct light shown.
+  report["adaptive"] = {{"rounds", adaptive.rounds},
+                        {"elements_before", adaptive.elementsBefore},
+                        {"elements_after", adaptive.elementsAfter},
+                        {"marked", adaptive.marked},
+                        {"exposure_estimate", adaptive.exposure},
+                        {"seconds", adaptive.seconds}};
+  report["direct_light"] = {{"at_vertices", bool(direct)},
+                            {"light_samples", direct ? direct->samples() : 0},
+                            {"rays", direct ? direct->rays() : 0}};
   Json counts;
   counts["surfaces"] = scene.surfaces.size();
   counts["patches"] = mesh.patches.size();
@@ -177,7 +191,9 @@ void runSolve(const SolveOptions& o) {
   report["history"] = history;
 
   // Outputs: each through a temporary file; the report last, so a report means a result.
-  writeResult(o.output, mesh, B, ambient, exposure, camera);
+  std::unique_ptr<VertexDirect> vertexDirect;
+  if (direct) vertexDirect.reset(new VertexDirect{solver.direct(), direct->radiosity()});
+  writeResult(o.output, mesh, B, ambient, exposure, camera, vertexDirect.get());
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
   std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",

@@ -1,0 +1,176 @@
+#include "mesh/refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/error.h"
+
+namespace rad {
+namespace {
+
+using Mesh = TriMesh;
+
+/// The squared length of edge e, computed from its ends in index order so that both of its
+/// faces see the same value (the longest-edge order must be one order).
+double squaredLength(const Mesh& m, Mesh::EdgeHandle e) {
+  auto h = m.halfedge_handle(e, 0);
+  auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+  if (b.idx() < a.idx()) std::swap(a, b);
+  return (m.point(b) - m.point(a)).sqrnorm();
+}
+
+/// The longest edge of f; ties go to the smaller edge index, so that the order is total and
+/// the propagation path ends.
+Mesh::EdgeHandle longest(const Mesh& m, Mesh::FaceHandle f) {
+  Mesh::EdgeHandle best;
+  double most = -1;
+  for (auto h : m.fh_range(f)) {
+    auto e = m.edge_handle(h);
+    double l = squaredLength(m, e);
+    if (l > most || (l == most && e.idx() < best.idx())) most = l, best = e;
+  }
+  return best;
+}
+
+class Bisector {
+ public:
+  explicit Bisector(PatchMesh& mesh) : pm_(mesh), m_(mesh.mesh) {}
+
+  /// Bisects f across its longest edge, after its LEPP neighbours as needed.
+  void bisect(Mesh::FaceHandle f) {
+    for (;;) {
+      auto e = longest(m_, f);
+      auto h = m_.halfedge_handle(e, 0);
+      auto g = m_.face_handle(h) == f ? m_.opposite_face_handle(h) : m_.face_handle(h);
+      if (!g.is_valid() || longest(m_, g) == e) {
+        split(e);
+        return;
+      }
+      bisect(g);  // f's neighbour across e is now one half of g: look again
+    }
+  }
+
+  int added() const { return added_; }
+
+ private:
+  void split(Mesh::EdgeHandle e) {
+    auto h = m_.halfedge_handle(e, 0);
+    const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
+    const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
+    // The faces on either side keep their handles as one half; their areas halve.
+    std::vector<std::pair<Mesh::FaceHandle, double>> halved;
+    for (auto side : {h, m_.opposite_halfedge_handle(h)}) {
+      auto f = m_.face_handle(side);
+      if (f.is_valid()) halved.emplace_back(f, pm_.area(f.idx()) * 0.5);
+    }
+    const size_t facesBefore = m_.n_faces();
+    auto v = m_.add_vertex(mid);
+    m_.split_copy(e, v);  // the new faces copy their parent's properties
+    for (auto& [f, area] : halved) pm_.setArea(f.idx(), area);
+    // The new faces are the parents' other halves: they copied the parent's area.
+    for (size_t k = facesBefore; k < m_.n_faces(); ++k) pm_.setArea(int(k), pm_.area(int(k)) * 0.5);
+    added_ += int(m_.n_faces() - facesBefore);
+    // The new vertex lies on the edge, so it takes the edge's mean normal.
+    auto n = m_.normal(a) + m_.normal(b);
+    m_.set_normal(v, n.norm() > 0 ? n.normalized() : n);
+  }
+
+  PatchMesh& pm_;
+  Mesh& m_;
+  int added_ = 0;
+};
+
+}  // namespace
+
+double longestEdge(const PatchMesh& mesh, int e) {
+  return std::sqrt(squaredLength(mesh.mesh, longest(mesh.mesh, Mesh::FaceHandle(e))));
+}
+
+int bisectElements(PatchMesh& mesh, const std::vector<int>& elements) {
+  const int before = mesh.elementCount();
+  Bisector bisector(mesh);
+  // An element listed may already have been halved by a neighbour's propagation path; it is
+  // bisected once more all the same: what was asked is that it get smaller.
+  for (int e : elements) {
+    RAD_CHECK(e >= 0 && e < before);
+    bisector.bisect(Mesh::FaceHandle(e));
+  }
+  // Patch element lists and surface counts.
+  for (auto& p : mesh.patches) p.elements.clear();
+  for (auto& s : mesh.surfaces) s.elements = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    mesh.patches[size_t(mesh.patch(e))].elements.push_back(e);
+    mesh.surfaces[size_t(mesh.surface(e))].elements += 1;
+  }
+  return mesh.elementCount() - before;
+}
+
+std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance) {
+  const Mesh& m = pm.mesh;
+  std::vector<TJunction> out;
+  if (m.n_vertices() == 0) return out;
+  // Vertices by surface side, in a grid of cells about one mean edge wide.
+  double meanEdge = 0;
+  for (auto e : m.edges()) meanEdge += std::sqrt(squaredLength(m, e));
+  meanEdge /= double(std::max<size_t>(1, m.n_edges()));
+  const double cell = meanEdge > 0 ? meanEdge : 1.0;
+  auto sideOf = [&](Mesh::VertexHandle v) {
+    for (auto f : m.vf_range(v)) return pm.surface(f.idx()) * 2 + pm.side(f.idx());
+    return -1;
+  };
+  std::vector<int> side(m.n_vertices());
+  for (auto v : m.vertices()) side[v.idx()] = sideOf(v);
+  auto cellKey = [&](int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
+  };
+  auto cellOf = [&](const OpenMesh::Vec3d& p) {
+    return std::array<int64_t, 3>{int64_t(std::floor(p[0] / cell)), int64_t(std::floor(p[1] / cell)),
+                                  int64_t(std::floor(p[2] / cell))};
+  };
+  std::unordered_multimap<uint64_t, int> grid;
+  for (auto v : m.vertices()) {
+    auto c = cellOf(m.point(v));
+    grid.emplace(cellKey(c[0], c[1], c[2]), v.idx());
+  }
+  // Coincident vertices of one side.
+  for (auto v : m.vertices()) {
+    auto c = cellOf(m.point(v));
+    auto [lo, hi] = grid.equal_range(cellKey(c[0], c[1], c[2]));
+    for (auto it = lo; it != hi; ++it) {
+      int w = it->second;
+      if (w <= v.idx() || side[w] != side[v.idx()]) continue;
+      if ((m.point(Mesh::VertexHandle(w)) - m.point(v)).norm() <= tolerance * cell)
+        out.push_back({w, v.idx(), v.idx()});
+    }
+  }
+  // Vertices inside edges: visit the cells the edge's bounding box covers.
+  for (auto e : m.edges()) {
+    auto h = m.halfedge_handle(e, 0);
+    auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+    const auto pa = m.point(a), pb = m.point(b);
+    const auto d = pb - pa;
+    const double len2 = d.sqrnorm();
+    if (!(len2 > 0)) continue;
+    auto ca = cellOf(pa), cb = cellOf(pb);
+    for (int64_t x = std::min(ca[0], cb[0]); x <= std::max(ca[0], cb[0]); ++x)
+      for (int64_t y = std::min(ca[1], cb[1]); y <= std::max(ca[1], cb[1]); ++y)
+        for (int64_t z = std::min(ca[2], cb[2]); z <= std::max(ca[2], cb[2]); ++z) {
+          auto [lo, hi] = grid.equal_range(cellKey(x, y, z));
+          for (auto it = lo; it != hi; ++it) {
+            int w = it->second;
+            if (w == a.idx() || w == b.idx() || side[w] != side[a.idx()]) continue;
+            const auto pw = m.point(Mesh::VertexHandle(w));
+            const double t = ((pw - pa) | d) / len2;
+            if (t <= tolerance || t >= 1 - tolerance) continue;
+            const double off = (pw - (pa + d * t)).norm();
+            if (off <= tolerance * std::sqrt(len2)) out.push_back({w, a.idx(), b.idx()});
+          }
+        }
+  }
+  return out;
+}
+
+}  // namespace rad

@@ -1,0 +1,178 @@
+#include "radiosity/adaptive.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "mesh/color.h"
+#include "mesh/error.h"
+#include "mesh/refine.h"
+#include "mesh/settings.h"
+#include "radiosity/result.h"
+
+namespace rad {
+namespace {
+
+/// The display value (sRGB-encoded, in [0, 1]) of a luminance at exposure K.
+double display(double lum, double exposure) {
+  return srgbEncode(std::clamp(lum * exposure, 0.0, 1.0));
+}
+
+/// Luminance of the light vertex a receives through samples b does not see.
+double lightOnlyFrom(const VertexLight& a, const VertexLight& b, const std::vector<int>& triangleOf) {
+  double sum = 0;
+  for (size_t w = 0; w < a.visible.size(); ++w) {
+    uint64_t only = a.visible[w] & ~b.visible[w];
+    while (only) {
+      const int bit = __builtin_ctzll(only);
+      only &= only - 1;
+      sum += a.weight[size_t(triangleOf[w * 64 + size_t(bit)])];
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+DisplayEstimate estimateDisplay(const PatchMesh& mesh, const DirectLight& light) {
+  const auto& vertices = light.vertices();
+  std::vector<glm::dvec3> B(size_t(mesh.elementCount()), glm::dvec3(0.0));
+  glm::dvec3 reflected(0.0), rhoMean(0.0);
+  double area = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    glm::dvec3 d(0.0);
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) d += vertices[size_t(v.idx())].radiosity;
+    B[size_t(e)] = mesh.emission(e) + d / 3.0;
+    reflected += mesh.area(e) * d / 3.0;
+    rhoMean += mesh.area(e) * mesh.reflectance(e);
+    area += mesh.area(e);
+  }
+  DisplayEstimate out;
+  if (!(area > 0)) return out;
+  rhoMean /= area;
+  out.ambient = reflected / area / (glm::dvec3(1.0) - glm::min(rhoMean, glm::dvec3(0.999)));
+  for (int e = 0; e < mesh.elementCount(); ++e) B[size_t(e)] += mesh.reflectance(e) * out.ambient;
+  out.exposure = autoExposure(mesh, B);
+  return out;
+}
+
+std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
+                                  const DisplayEstimate& estimate, const AdaptiveOptions& options,
+                                  MidpointLight& midpoints) {
+  std::vector<int> out;
+  if (!light.enabled()) return out;
+  const double exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
+  const auto& vertices = light.vertices();
+  const TriMesh& m = mesh.mesh;
+  RAD_CHECK(vertices.size() == m.n_vertices());
+  std::vector<int> triangleOf(size_t(light.samples() + 63) / 64 * 64, 0);
+  for (size_t t = 0; t < light.lights().size(); ++t)
+    for (int j = 0; j < light.lights()[t].count; ++j) triangleOf[size_t(light.lights()[t].first + j)] = int(t);
+  auto edgeKey = [](int a, int b) { return uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b)); };
+
+  // The candidates, and the midpoints of their edges not yet known.
+  std::vector<int> candidates;
+  std::vector<DirectLight::Probe> probes;
+  std::vector<uint64_t> probed;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (longestEdge(mesh, e) <= options.minElementEdge) continue;
+    if (mesh.reflectance(e) == glm::dvec3(0.0)) continue;  // black shows no light
+    candidates.push_back(e);
+    for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
+      auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+      const uint64_t key = edgeKey(a.idx(), b.idx());
+      if (midpoints.count(key)) continue;
+      midpoints[key] = glm::dvec3(0.0);
+      DirectLight::Probe p;
+      p.point = (PatchMesh::toGlm(m.point(a)) + PatchMesh::toGlm(m.point(b))) * 0.5;
+      p.normal = PatchMesh::toGlm(m.normal(a) + m.normal(b));
+      p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : mesh.normal(e);
+      p.rho = mesh.reflectance(e);
+      p.inwards = mesh.centroid(e) - p.point;
+      probes.push_back(p);
+      probed.push_back(key);
+    }
+  }
+  const std::vector<glm::dvec3> found = light.radiosityAt(probes);
+  for (size_t k = 0; k < probed.size(); ++k) midpoints[probed[k]] = found[k];
+
+  for (int e : candidates) {
+    const double ambient = luminance(mesh.reflectance(e) * estimate.ambient);
+    auto shown = [&](double lum) { return display(lum + ambient, exposure); };
+    bool refine = false;
+    // What Gouraud shading shows at each edge's midpoint against the light there.
+    std::array<int, 3> corner;
+    int k = 0;
+    for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
+      const int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
+      corner[size_t(k++)] = a;
+      const double interpolated =
+          0.5 * (luminance(vertices[size_t(a)].radiosity) + luminance(vertices[size_t(b)].radiosity));
+      const double actual = luminance(midpoints.at(edgeKey(a, b)));
+      refine = refine || std::abs(shown(actual) - shown(interpolated)) > options.contrast;
+    }
+    // Shadow boundaries: light one vertex sees that another does not.
+    for (size_t i = 0; i < 3 && !refine; ++i)
+      for (size_t j = 0; j < 3 && !refine; ++j) {
+        const VertexLight &vi = vertices[size_t(corner[i])], &vj = vertices[size_t(corner[j])];
+        if (i == j || vi.visible == vj.visible) continue;
+        const double lum = luminance(vi.radiosity);
+        refine = shown(lum) - shown(lum - lightOnlyFrom(vi, vj, triangleOf)) > options.contrast;
+      }
+    if (refine) out.push_back(e);
+  }
+  return out;
+}
+
+AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const AdaptiveOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  AdaptiveStats stats;
+  stats.elementsBefore = mesh.elementCount();
+  light.update(mesh);
+  const DisplayEstimate estimate = estimateDisplay(mesh, light);
+  MidpointLight midpoints;
+  stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
+  for (int round = 0; round < options.maxRounds && light.enabled(); ++round) {
+    std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
+    if (marked.empty()) break;
+    stats.marked += int(marked.size());
+    bisectElements(mesh, marked);
+    light.update(mesh);
+    ++stats.rounds;
+  }
+  stats.elementsAfter = mesh.elementCount();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+SceneMesh meshScene(const Scene& scene, const Settings& settings) {
+  SceneMesh s;
+  s.mesh = buildPatchMesh(scene, settings.mesh());
+  addDirectLight(s, scene, settings);
+  return s;
+}
+
+void addDirectLight(SceneMesh& s, const Scene& scene, const Settings& settings) {
+  s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
+  if (!settings.vertexDirect && !settings.adaptive) return;
+  s.direct = std::make_unique<DirectLight>(s.mesh, scene.diagonal());
+  if (!s.direct->enabled()) {
+    s.direct.reset();
+    return;
+  }
+  if (settings.adaptive) {
+    AdaptiveOptions options;
+    options.minElementEdge = settings.minElementEdge;
+    options.contrast = settings.contrast;
+    options.exposure = settings.exposure.value_or(0.0);
+    s.adaptive = refineAdaptively(s.mesh, *s.direct, options);
+  } else {
+    s.direct->update(s.mesh);
+  }
+  if (!settings.vertexDirect) s.direct.reset();
+}
+
+}  // namespace rad

@@ -1,0 +1,74 @@
+#pragma once
+// Adaptive subdivision: elements are bisected where the direct light, computed at their
+// vertices by rays, changes visibly across them: their vertices see different parts of an
+// emitter (a penumbra) or show values more than a contrast threshold apart.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <memory>
+
+#include "mesh/patch_mesh.h"
+#include "mesh/settings.h"
+#include "radiosity/direct_light.h"
+
+namespace rad {
+
+
+struct AdaptiveOptions {
+  double minElementEdge = 0;      ///< elements whose longest edge is this or less stay whole
+  double contrast = kDefaultContrast;
+  double exposure = 0;            ///< 0: estimated from the direct light (estimateExposure)
+  int maxRounds = 64;
+};
+
+struct AdaptiveStats {
+  int rounds = 0;                 ///< rounds that bisected something
+  int elementsBefore = 0, elementsAfter = 0;
+  int marked = 0;                 ///< elements marked over all rounds
+  double exposure = 0;            ///< the exposure the contrast was judged at
+  double seconds = 0;
+};
+
+/// How the result will most likely be shown, before it is solved: the ambient light the
+/// direct light will become, Σ A·D / ΣA / (1 − ρ̄) (Cohen et al. 1988), each element showing
+/// D + ρ·ambient; and the exposure result.h's rule gives that.
+struct DisplayEstimate {
+  double exposure = 1;
+  glm::dvec3 ambient{0.0};
+};
+DisplayEstimate estimateDisplay(const PatchMesh& mesh, const DirectLight& light);
+
+/// The direct light at edge midpoints already computed, by edge (its end vertices).
+using MidpointLight = std::unordered_map<uint64_t, glm::dvec3>;
+
+/// The elements that need refining: longest edge above options.minElementEdge, and either
+/// - at the midpoint of one of their edges, the direct light differs from what Gouraud
+///   shading shows there (the mean of the edge's ends) by more than options.contrast on
+///   display (display units, with the ambient estimate added): a smooth falloff, which
+///   linear interpolation follows, is left alone; or
+/// - two of their vertices see different samples on an emitter, and the light through the
+///   samples one sees and the other does not is more than options.contrast on display
+///   (a shadow boundary crossing the element).
+/// Midpoints are computed by rays once and kept in `midpoints`.
+std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
+                                  const DisplayEstimate& shown, const AdaptiveOptions& options,
+                                  MidpointLight& midpoints);
+
+/// Refines the mesh until no element needs it (or maxRounds): each round bisects the marked
+/// elements (conforming, mesh/refine.h) and casts rays from the new vertices only.
+AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const AdaptiveOptions& options);
+
+/// A scene meshed by its settings: the uniform patch mesh (buildPatchMesh), refined when
+/// settings.adaptive; and the direct light at its vertices when settings.vertexDirect (null
+/// when off, or when the scene's emitters are too many for rays: DirectLight::enabled).
+struct SceneMesh {
+  PatchMesh mesh;
+  std::unique_ptr<DirectLight> direct;
+  AdaptiveStats adaptive;
+};
+SceneMesh meshScene(const Scene& scene, const Settings& settings);
+/// The second half of meshScene, for a mesh built by buildPatchMesh(scene, settings.mesh()).
+void addDirectLight(SceneMesh& meshed, const Scene& scene, const Settings& settings);
+
+}  // namespace rad

@@ -1,0 +1,220 @@
+#include "radiosity/direct_light.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+
+#include "mesh/color.h"
+#include "radiosity/point_polygon.h"
+
+namespace rad {
+namespace {
+
+/// Ray ends are moved this far (relative to the scene size) off their surfaces: off the
+/// receiver along its normal and towards its own elements (a vertex at the foot of a wall
+/// must not start its rays inside the wall's plane), and off the emitter along its normal.
+constexpr double kRayOffset = 1e-5;
+
+}  // namespace
+
+/// Embree's device and scene: every element, in coordinates (p − centre)/size so that single
+/// precision holds at any scene scale.
+struct DirectLight::Rays {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  glm::dvec3 centre{0.0};
+  double scale = 1;
+
+  ~Rays() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  /// Whether the segment from a to b (scene coordinates) is blocked.
+  bool blocked(const glm::dvec3& a, const glm::dvec3& b) const {
+    const glm::dvec3 o = (a - centre) / scale, d = (b - a) / scale;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(16) RTCRay ray{};
+    ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
+    ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
+    ray.tnear = 0.0f;
+    ray.tfar = 1.0f;
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+    ray.time = 0;
+    rtcOccluded1(scene, &context, &ray);
+    return ray.tfar < 0;
+  }
+};
+
+DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter,
+                         int workers)
+    : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize) {
+  workers_ = workers > 0 ? workers : std::max(1, int(std::thread::hardware_concurrency()));
+  // The light triangles: every emitting element, with samples by its share of its surface.
+  std::vector<int> emitters;
+  std::vector<double> surfaceArea(mesh.surfaces.size() * 2, 0.0);
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (luminance(mesh.emission(e)) <= 0) continue;
+    emitters.push_back(e);
+    surfaceArea[size_t(mesh.surface(e) * 2 + mesh.side(e))] += mesh.area(e);
+  }
+  enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterElements;
+  if (!enabled_) return;
+  const double offset = kRayOffset * sceneSize;
+  for (int e : emitters) {
+    LightTriangle t;
+    t.corners = mesh.corners(e);
+    t.normal = mesh.normal(e);
+    t.emission = mesh.emission(e);
+    t.first = int(points_.size());
+    const double share = mesh.area(e) / surfaceArea[size_t(mesh.surface(e) * 2 + mesh.side(e))];
+    const int wanted = std::max(1, int(std::lround(samplesPerEmitter * share)));
+    const int m = int(std::ceil(std::sqrt(double(wanted))));
+    // Centroids of the m×m congruent triangles: upright (i, j) and, inside, inverted ones.
+    const glm::dvec3 a = t.corners[0], u = t.corners[1] - a, v = t.corners[2] - a;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; i + j < m; ++j) {
+        points_.push_back(a + u * ((i + 1.0 / 3) / m) + v * ((j + 1.0 / 3) / m) + t.normal * offset);
+        if (i + j < m - 1)
+          points_.push_back(a + u * ((i + 2.0 / 3) / m) + v * ((j + 2.0 / 3) / m) + t.normal * offset);
+      }
+    t.count = int(points_.size()) - t.first;
+    lights_.push_back(t);
+  }
+  samples_ = int(points_.size());
+
+  // The occluders: every element.
+  Rays& r = *rays_impl_;
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (auto v : mesh.mesh.vertices()) {
+    const glm::dvec3 p = PatchMesh::toGlm(mesh.mesh.point(v));
+    lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  r.centre = (lo + hi) * 0.5;
+  r.scale = std::max(glm::length(hi - lo), 1e-300);
+  r.device = rtcNewDevice("threads=1");
+  if (!r.device) throw std::runtime_error("embree: no device");
+  r.scene = rtcNewScene(r.device);
+  rtcSetSceneFlags(r.scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry g = rtcNewGeometry(r.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), mesh.mesh.n_vertices()));
+  for (auto v : mesh.mesh.vertices()) {
+    const glm::dvec3 p = (PatchMesh::toGlm(mesh.mesh.point(v)) - r.centre) / r.scale;
+    for (int k = 0; k < 3; ++k) vb[3 * v.idx() + k] = float(p[k]);
+  }
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                            3 * sizeof(unsigned), mesh.mesh.n_faces()));
+  for (auto f : mesh.mesh.faces()) {
+    int k = 0;
+    for (auto v : mesh.mesh.fv_range(f)) ib[3 * f.idx() + k++] = unsigned(v.idx());
+  }
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(r.scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(r.scene);
+  if (rtcGetDeviceError(r.device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
+}
+
+DirectLight::~DirectLight() = default;
+
+DirectLight::Probe DirectLight::probeAt(const PatchMesh& mesh, TriMesh::VertexHandle v) const {
+  Probe probe;
+  probe.point = PatchMesh::toGlm(mesh.mesh.point(v));
+  probe.normal = PatchMesh::toGlm(mesh.mesh.normal(v));
+  int faces = 0;
+  for (auto f : mesh.mesh.vf_range(v)) {
+    if (faces++ == 0) probe.rho = mesh.reflectance(f.idx());
+    probe.inwards += mesh.centroid(f.idx());
+  }
+  if (faces) probe.inwards = probe.inwards / double(faces) - probe.point;
+  return probe;
+}
+
+VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
+  VertexLight out;
+  out.visible.assign(size_t((samples_ + 63) / 64), 0);
+  out.weight.assign(lights_.size(), 0.0f);
+  const glm::dvec3 &p = probe.point, &n = probe.normal, &rho = probe.rho;
+  if (rho == glm::dvec3(0.0)) return out;  // black: nothing to show
+  const double offset = kRayOffset * sceneSize_;
+  const double inwards = glm::length(probe.inwards);
+  const glm::dvec3 origin = p + n * offset + (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    const LightTriangle& light = lights_[t];
+    if (glm::dot(light.normal, p - light.corners[0]) <= 0) continue;  // behind the emitter
+    const double F = pointPolygonFormFactor(p, n, {light.corners.begin(), light.corners.end()});
+    if (!(F > 0)) continue;
+    int above = 0, seen = 0;
+    for (int j = light.first; j < light.first + light.count; ++j) {
+      if (glm::dot(n, points_[size_t(j)] - p) <= 0) continue;  // below the horizon
+      ++above;
+      ++raysCast;
+      if (rays_impl_->blocked(origin, points_[size_t(j)])) continue;
+      ++seen;
+      out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
+    }
+    if (above == 0) continue;
+    const glm::dvec3 through = rho * light.emission * (F / above);  // per visible sample
+    out.radiosity += through * double(seen);
+    out.weight[t] = float(luminance(through));
+  }
+  return out;
+}
+
+std::vector<glm::dvec3> DirectLight::radiosityAt(const std::vector<Probe>& probes) {
+  std::vector<glm::dvec3> out(probes.size(), glm::dvec3(0.0));
+  if (!enabled_) return out;
+  std::atomic<size_t> next{0};
+  std::atomic<long> rays{0};
+  auto work = [&] {
+    long cast = 0;
+    for (size_t i; (i = next.fetch_add(64)) < probes.size();)
+      for (size_t k = i; k < std::min(probes.size(), i + 64); ++k)
+        out[k] = compute(probes[k], cast).radiosity;
+    rays += cast;
+  };
+  std::vector<std::thread> threads;
+  for (int w = 1; w < workers_; ++w) threads.emplace_back(work);
+  work();
+  for (auto& t : threads) t.join();
+  rays_ += rays;
+  return out;
+}
+
+void DirectLight::update(const PatchMesh& mesh) {
+  if (!enabled_) return;
+  const size_t from = vertices_.size(), to = mesh.mesh.n_vertices();
+  if (from >= to) return;
+  vertices_.resize(to);
+  std::atomic<size_t> next{from};
+  std::atomic<long> rays{0};
+  auto work = [&] {
+    long cast = 0;
+    for (size_t i; (i = next.fetch_add(64)) < to;)
+      for (size_t k = i; k < std::min(to, i + 64); ++k)
+        vertices_[k] = compute(probeAt(mesh, TriMesh::VertexHandle(int(k))), cast);
+    rays += cast;
+  };
+  std::vector<std::thread> threads;
+  for (int w = 1; w < workers_; ++w) threads.emplace_back(work);
+  work();
+  for (auto& t : threads) t.join();
+  rays_ += rays;
+}
+
+std::vector<glm::dvec3> DirectLight::radiosity() const {
+  std::vector<glm::dvec3> out;
+  out.reserve(vertices_.size());
+  for (const auto& v : vertices_) out.push_back(v.radiosity);
+  return out;
+}
+
+}  // namespace rad

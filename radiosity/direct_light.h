@@ -1,0 +1,83 @@
+#pragma once
+// Direct light at the mesh's vertices by rays to fixed sample points on the emitters
+// (Wallace, Elmquist & Haines 1989), so that shadow boundaries do not depend on the hemicube
+// resolution, and the visibility facts adaptive refinement decides by.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+/// Sample points per emitting surface: each emitting element gets its share by area, as the
+/// centroids of an m×m split of the triangle.
+constexpr int kDefaultLightSamples = 64;
+/// Above this many emitting elements, direct light by rays costs more than it brings (a scene
+/// where most surfaces glow has no sharp shadows): the hemicubes' values are shown instead.
+constexpr int kMaxRayEmitterElements = 512;
+
+/// One emitting element seen from the vertices: its samples are [first, first + count).
+struct LightTriangle {
+  std::array<glm::dvec3, 3> corners;
+  glm::dvec3 normal{0.0}, emission{0.0};
+  int first = 0, count = 0;
+};
+
+/// The direct light at one vertex: ρ·Σₜ Eₜ·Fₜ·(visible share of t's samples), Fₜ the exact
+/// unoccluded point-to-triangle factor; and, per sample, whether it is visible.
+struct VertexLight {
+  glm::dvec3 radiosity{0.0};
+  std::vector<uint64_t> visible;  ///< bit per sample
+  std::vector<float> weight;      ///< per light triangle: luminance each visible sample adds
+};
+
+/// Rays against every element of the mesh (Embree, single precision in coordinates
+/// normalised to the scene's box). The mesh may be refined afterwards (bisection does not
+/// move geometry): update() computes the vertices added since.
+class DirectLight {
+ public:
+  /// workers: threads casting rays (0: one per hardware thread).
+  DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter = kDefaultLightSamples,
+              int workers = 0);
+  ~DirectLight();
+  DirectLight(const DirectLight&) = delete;
+  DirectLight& operator=(const DirectLight&) = delete;
+
+  /// Whether the scene's emitters are few enough for rays (kMaxRayEmitterElements).
+  bool enabled() const { return enabled_; }
+  /// Computes the vertices of `mesh` (the same mesh, perhaps refined) not yet computed.
+  void update(const PatchMesh& mesh);
+  const std::vector<VertexLight>& vertices() const { return vertices_; }
+  const std::vector<LightTriangle>& lights() const { return lights_; }
+  int samples() const { return samples_; }
+  long rays() const { return rays_; }
+  /// Per vertex, the direct light (radiosity).
+  std::vector<glm::dvec3> radiosity() const;
+
+  /// A point to find the direct light at: on a surface with unit normal `normal` and
+  /// reflectance `rho`; rays start a little off it, towards `inwards` (its own elements).
+  struct Probe {
+    glm::dvec3 point{0.0}, normal{0.0}, rho{0.0}, inwards{0.0};
+  };
+  /// The direct light at each probe (radiosity), on all workers.
+  std::vector<glm::dvec3> radiosityAt(const std::vector<Probe>& probes);
+
+ private:
+  VertexLight compute(const Probe& probe, long& raysCast) const;
+  Probe probeAt(const PatchMesh& mesh, TriMesh::VertexHandle v) const;
+
+  struct Rays;
+  std::unique_ptr<Rays> rays_impl_;
+  std::vector<LightTriangle> lights_;
+  std::vector<glm::dvec3> points_;  // sample points, already moved off their emitter
+  std::vector<VertexLight> vertices_;
+  double sceneSize_ = 1;
+  int samples_ = 0, workers_ = 1;
+  bool enabled_ = false;
+  long rays_ = 0;
+};
+
+}  // namespace rad
