@@ -777,6 +777,7 @@ PatchMesh::PatchMesh() {
   mesh.add_property(surface_, "surface");
   mesh.add_property(side_, "side");
   mesh.add_property(patch_, "patch");
+  mesh.add_property(base_, "base");
   mesh.add_property(area_, "area");
   mesh.add_property(reflectance_, "reflectance");
   mesh.add_property(emission_, "emission");
@@ -808,6 +809,7 @@ void PatchMesh::setElement(int e, int surface, int side, double area,
   auto f = face(e);
   mesh.property(surface_, f) = surface;
   mesh.property(side_, f) = side;
+  mesh.property(base_, f) = e;
   mesh.property(area_, f) = area;
   mesh.property(reflectance_, f) = toOpenMesh(reflectance);
   mesh.property(emission_, f) = toOpenMesh(emission);

@@ -81,6 +81,8 @@ class PatchMesh {
   int surface(int e) const { return mesh.property(surface_, face(e)); }
   int side(int e) const { return mesh.property(side_, face(e)); }
   int patch(int e) const { return mesh.property(patch_, face(e)); }
+  /// The element of the mesh as built (before refinement) that element e is part of.
+  int base(int e) const { return mesh.property(base_, face(e)); }
   double area(int e) const { return mesh.property(area_, face(e)); }
   glm::dvec3 reflectance(int e) const { return toGlm(mesh.property(reflectance_, face(e))); }
   glm::dvec3 emission(int e) const { return toGlm(mesh.property(emission_, face(e))); }
@@ -102,7 +104,7 @@ class PatchMesh {
 
  private:
   static TriMesh::FaceHandle face(int e) { return TriMesh::FaceHandle(e); }
-  OpenMesh::FPropHandleT<int> surface_, side_, patch_;
+  OpenMesh::FPropHandleT<int> surface_, side_, patch_, base_;
   OpenMesh::FPropHandleT<double> area_;
   OpenMesh::FPropHandleT<OpenMesh::Vec3d> reflectance_, emission_;
 };

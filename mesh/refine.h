@@ -11,7 +11,7 @@ namespace rad {
 /// neighbours along its longest-edge propagation path (LEPP) whose own longest edge is
 /// another one, so that every split edge is split on both sides: the mesh stays conforming
 /// (no vertex inside another element's edge) and angles stay above half the smallest before.
-/// New elements keep their parent's surface, side, patch, materials and normal; each half
+/// New elements keep their parent's surface, side, patch, base element, materials and normal; each half
 /// takes half its parent's area, so patch and surface areas do not change. Elements are only
 /// added (existing indices keep their parent's first half); patch element lists, surface
 /// element counts and vertex normals are brought up to date. Returns the elements added.

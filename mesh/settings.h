@@ -29,7 +29,7 @@ constexpr int kDefaultShooterSamples = 1;
 constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
 /// Default minimum element edge of adaptive refinement: the element edge divided by this.
-constexpr double kDefaultMinElementRatio = 8;
+constexpr double kDefaultMinElementRatio = 4;
 /// Default contrast threshold of adaptive refinement, in display units (the sRGB-encoded
 /// value in [0, 1] of the exposed radiosity): about five of 255 display levels.
 constexpr double kDefaultContrast = 0.02;

@@ -168,7 +168,9 @@ void addDirectLight(SceneMesh& s, const Scene& scene, const Settings& settings) 
     options.minElementEdge = settings.minElementEdge;
     options.contrast = settings.contrast;
     options.exposure = settings.exposure.value_or(0.0);
+    auto base = std::make_unique<PatchMesh>(s.mesh);
     s.adaptive = refineAdaptively(s.mesh, *s.direct, options);
+    if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(base);
   } else {
     s.direct->update(s.mesh);
   }

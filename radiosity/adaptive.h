@@ -66,6 +66,9 @@ struct SceneMesh {
   PatchMesh mesh;
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;
+  /// The mesh before refinement (null when nothing was refined): the indirect light is shown
+  /// at its resolution (VertexDirect::base).
+  std::unique_ptr<PatchMesh> base;
 };
 SceneMesh meshScene(const Scene& scene, const Settings& settings);
 /// The second half of meshScene, for a mesh built by buildPatchMesh(scene, settings.mesh()).

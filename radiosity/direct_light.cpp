@@ -5,15 +5,46 @@
 #include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <unordered_map>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
 #include "mesh/color.h"
+#include "mesh/error.h"
 #include "radiosity/point_polygon.h"
+#include "radiosity/progressive_solver.h"
 
 namespace rad {
 namespace {
+
+/// The outline of a patch: its elements' edges with no element of the patch on the other
+/// side, chained into one loop, counter-clockwise seen from the lit side as the elements are.
+/// Empty when they do not make one simple loop (a patch with a hole).
+std::vector<glm::dvec3> patchOutline(const PatchMesh& mesh, const Patch& patch) {
+  const TriMesh& m = mesh.mesh;
+  const int id = mesh.patch(patch.elements[0]);
+  std::unordered_map<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedge
+  for (int e : patch.elements)
+    for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
+      auto other = m.opposite_face_handle(h);
+      if (other.is_valid() && mesh.patch(other.idx()) == id) continue;
+      if (!next.emplace(m.from_vertex_handle(h).idx(), h).second) return {};  // pinched
+    }
+  std::vector<glm::dvec3> out;
+  if (next.empty()) return out;
+  auto h = next.begin()->second;
+  const int start = m.from_vertex_handle(h).idx();
+  for (size_t steps = 0; steps <= next.size(); ++steps) {
+    out.push_back(PatchMesh::toGlm(m.point(m.from_vertex_handle(h))));
+    const int to = m.to_vertex_handle(h).idx();
+    if (to == start) return out.size() == next.size() ? out : std::vector<glm::dvec3>{};
+    auto it = next.find(to);
+    if (it == next.end()) return {};
+    h = it->second;
+  }
+  return {};
+}
 
 /// Ray ends are moved this far (relative to the scene size) off their surfaces: off the
 /// receiver along its normal and towards its own elements (a vertex at the foot of a wall
@@ -57,36 +88,40 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
                          int workers)
     : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize) {
   workers_ = workers > 0 ? workers : std::max(1, int(std::thread::hardware_concurrency()));
-  // The light triangles: every emitting element, with samples by its share of its surface.
+  // The lights: every emitting patch, with samples by its share of its surface side.
   std::vector<int> emitters;
-  std::vector<double> surfaceArea(mesh.surfaces.size() * 2, 0.0);
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    if (luminance(mesh.emission(e)) <= 0) continue;
-    emitters.push_back(e);
-    surfaceArea[size_t(mesh.surface(e) * 2 + mesh.side(e))] += mesh.area(e);
+  std::vector<double> sideArea(mesh.surfaces.size() * 2, 0.0);
+  for (int p = 0; p < int(mesh.patches.size()); ++p) {
+    if (!mesh.emits(p)) continue;
+    emitters.push_back(p);
+    sideArea[size_t(mesh.patches[p].surface * 2 + mesh.patches[p].side)] += mesh.patches[p].area;
   }
-  enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterElements;
+  enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterPatches;
   if (!enabled_) return;
   const double offset = kRayOffset * sceneSize;
-  for (int e : emitters) {
-    LightTriangle t;
-    t.corners = mesh.corners(e);
-    t.normal = mesh.normal(e);
-    t.emission = mesh.emission(e);
-    t.first = int(points_.size());
-    const double share = mesh.area(e) / surfaceArea[size_t(mesh.surface(e) * 2 + mesh.side(e))];
-    const int wanted = std::max(1, int(std::lround(samplesPerEmitter * share)));
-    const int m = int(std::ceil(std::sqrt(double(wanted))));
-    // Centroids of the m×m congruent triangles: upright (i, j) and, inside, inverted ones.
-    const glm::dvec3 a = t.corners[0], u = t.corners[1] - a, v = t.corners[2] - a;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; i + j < m; ++j) {
-        points_.push_back(a + u * ((i + 1.0 / 3) / m) + v * ((j + 1.0 / 3) / m) + t.normal * offset);
-        if (i + j < m - 1)
-          points_.push_back(a + u * ((i + 2.0 / 3) / m) + v * ((j + 2.0 / 3) / m) + t.normal * offset);
-      }
-    t.count = int(points_.size()) - t.first;
-    lights_.push_back(t);
+  for (int p : emitters) {
+    const Patch& patch = mesh.patches[p];
+    const double share = patch.area / sideArea[size_t(patch.surface * 2 + patch.side)];
+    const int count = std::max(1, int(std::lround(samplesPerEmitter * share)));
+    LightPolygon light;
+    light.normal = patch.normal;
+    light.emission = mesh.emission(patch.elements[0]);
+    light.first = int(points_.size());
+    for (const ShooterSample& s : patchSamples(mesh, p, count)) points_.push_back(s.point + light.normal * offset);
+    light.count = int(points_.size()) - light.first;
+    std::vector<glm::dvec3> outline = patchOutline(mesh, patch);
+    if (!outline.empty()) {
+      light.outline = std::move(outline);
+      lights_.push_back(std::move(light));
+      continue;
+    }
+    // No simple outline: each element is a light, sharing the patch's samples by position.
+    for (int e : patch.elements) {
+      LightPolygon part = light;
+      const auto c = mesh.corners(e);
+      part.outline.assign(c.begin(), c.end());
+      lights_.push_back(std::move(part));
+    }
   }
   samples_ = int(points_.size());
 
@@ -148,23 +183,31 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   const double inwards = glm::length(probe.inwards);
   const glm::dvec3 origin = p + n * offset + (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
   for (size_t t = 0; t < lights_.size(); ++t) {
-    const LightTriangle& light = lights_[t];
-    if (glm::dot(light.normal, p - light.corners[0]) <= 0) continue;  // behind the emitter
-    const double F = pointPolygonFormFactor(p, n, {light.corners.begin(), light.corners.end()});
+    const LightPolygon& light = lights_[t];
+    if (glm::dot(light.normal, p - light.outline[0]) <= 0) continue;  // behind the emitter
+    const double F = pointPolygonFormFactor(p, n, light.outline);
     if (!(F > 0)) continue;
-    int above = 0, seen = 0;
+    // The visible share of the light: each sample weighted by its own differential factor,
+    // cosθ·cosθ'/r² (samples stand for equal areas), so that near a light its close parts
+    // count more; the exact unoccluded factor F carries the magnitude.
+    int above = 0;
+    double all = 0, visible = 0;
     for (int j = light.first; j < light.first + light.count; ++j) {
-      if (glm::dot(n, points_[size_t(j)] - p) <= 0) continue;  // below the horizon
+      const glm::dvec3 d = points_[size_t(j)] - p;
+      const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
+      if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
+      const double w = cosHere * cosThere / (r2 * r2);
       ++above;
+      all += w;
       ++raysCast;
       if (rays_impl_->blocked(origin, points_[size_t(j)])) continue;
-      ++seen;
+      visible += w;
       out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
     }
-    if (above == 0) continue;
-    const glm::dvec3 through = rho * light.emission * (F / above);  // per visible sample
-    out.radiosity += through * double(seen);
-    out.weight[t] = float(luminance(through));
+    if (above == 0 || !(all > 0)) continue;
+    const glm::dvec3 full = rho * light.emission * F;
+    out.radiosity += full * (visible / all);
+    out.weight[t] = float(luminance(full) / above);  // the mean sample's share
   }
   return out;
 }

@@ -12,26 +12,28 @@
 
 namespace rad {
 
-/// Sample points per emitting surface: each emitting element gets its share by area, as the
-/// centroids of an m×m split of the triangle.
-constexpr int kDefaultLightSamples = 64;
-/// Above this many emitting elements, direct light by rays costs more than it brings (a scene
+/// Sample points per emitting surface side: each emitting patch gets its share by area (at
+/// least one), spread over it in strata of equal area (patchSamples).
+constexpr int kDefaultLightSamples = 512;
+/// Above this many emitting patches, direct light by rays costs more than it brings (a scene
 /// where most surfaces glow has no sharp shadows): the hemicubes' values are shown instead.
-constexpr int kMaxRayEmitterElements = 512;
+constexpr int kMaxRayEmitterPatches = 256;
 
-/// One emitting element seen from the vertices: its samples are [first, first + count).
-struct LightTriangle {
-  std::array<glm::dvec3, 3> corners;
+/// One emitting patch seen from the vertices: its outline (counter-clockwise seen from its
+/// lit side), and its samples [first, first + count). A patch whose elements do not make one
+/// simple outline contributes one light per element instead.
+struct LightPolygon {
+  std::vector<glm::dvec3> outline;
   glm::dvec3 normal{0.0}, emission{0.0};
   int first = 0, count = 0;
 };
 
 /// The direct light at one vertex: ρ·Σₜ Eₜ·Fₜ·(visible share of t's samples), Fₜ the exact
-/// unoccluded point-to-triangle factor; and, per sample, whether it is visible.
+/// unoccluded point-to-polygon factor of light t; and, per sample, whether it is visible.
 struct VertexLight {
   glm::dvec3 radiosity{0.0};
   std::vector<uint64_t> visible;  ///< bit per sample
-  std::vector<float> weight;      ///< per light triangle: luminance each visible sample adds
+  std::vector<float> weight;      ///< per light: luminance each visible sample adds
 };
 
 /// Rays against every element of the mesh (Embree, single precision in coordinates
@@ -46,12 +48,12 @@ class DirectLight {
   DirectLight(const DirectLight&) = delete;
   DirectLight& operator=(const DirectLight&) = delete;
 
-  /// Whether the scene's emitters are few enough for rays (kMaxRayEmitterElements).
+  /// Whether the scene's emitters are few enough for rays (kMaxRayEmitterPatches).
   bool enabled() const { return enabled_; }
   /// Computes the vertices of `mesh` (the same mesh, perhaps refined) not yet computed.
   void update(const PatchMesh& mesh);
   const std::vector<VertexLight>& vertices() const { return vertices_; }
-  const std::vector<LightTriangle>& lights() const { return lights_; }
+  const std::vector<LightPolygon>& lights() const { return lights_; }
   int samples() const { return samples_; }
   long rays() const { return rays_; }
   /// Per vertex, the direct light (radiosity).
@@ -71,7 +73,7 @@ class DirectLight {
 
   struct Rays;
   std::unique_ptr<Rays> rays_impl_;
-  std::vector<LightTriangle> lights_;
+  std::vector<LightPolygon> lights_;
   std::vector<glm::dvec3> points_;  // sample points, already moved off their emitter
   std::vector<VertexLight> vertices_;
   double sceneSize_ = 1;

@@ -76,6 +76,52 @@ bool fitAtBoundary(const PatchMesh& m, const std::vector<glm::dvec3>& B, TriMesh
   return true;
 }
 
+/// Element values averaged over their base elements, reconstructed at the base mesh's
+/// vertices, and interpolated at the refined mesh's vertices inside their base elements.
+std::vector<glm::dvec3> substructured(const PatchMesh& m, const PatchMesh& base,
+                                      const std::vector<glm::dvec3>& value) {
+  const int n = base.elementCount();
+  std::vector<glm::dvec3> mean(size_t(n), glm::dvec3(0.0));
+  std::vector<double> area(size_t(n), 0.0);
+  for (int e = 0; e < m.elementCount(); ++e) {
+    const int b = m.base(e);
+    RAD_CHECK(b >= 0 && b < n);
+    mean[size_t(b)] += m.area(e) * value[size_t(e)];
+    area[size_t(b)] += m.area(e);
+  }
+  for (int b = 0; b < n; ++b)
+    if (area[size_t(b)] > 0) mean[size_t(b)] /= area[size_t(b)];
+  const std::vector<glm::dvec3> atBase = vertexRadiosity(base, mean);
+  std::vector<glm::dvec3> out(m.mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto v : m.mesh.vertices()) {
+    if (size_t(v.idx()) < atBase.size()) {  // a vertex of the base mesh (vertices are only added)
+      out[size_t(v.idx())] = atBase[size_t(v.idx())];
+      continue;
+    }
+    int b = -1;
+    for (auto f : m.mesh.vf_range(v)) {
+      b = m.base(f.idx());
+      break;
+    }
+    if (b < 0) continue;
+    // Barycentric coordinates in the base element (the vertex lies in its plane).
+    const auto c = base.corners(b);
+    const glm::dvec3 p = PatchMesh::toGlm(m.mesh.point(v));
+    const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const double twice = glm::dot(normal, normal);
+    glm::dvec3 sum(0.0);
+    int k = 0;
+    for (auto w : base.mesh.fv_range(TriMesh::FaceHandle(b))) {
+      const glm::dvec3 &a = c[size_t((k + 1) % 3)], &d = c[size_t((k + 2) % 3)];
+      const double weight = std::max(0.0, glm::dot(glm::cross(d - a, p - a), normal) / twice);
+      sum += weight * atBase[size_t(w.idx())];
+      ++k;
+    }
+    out[size_t(v.idx())] = sum;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
@@ -102,7 +148,7 @@ std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<gl
   RAD_CHECK(direct->element.size() == B.size() && direct->vertex.size() == m.mesh.n_vertices());
   std::vector<glm::dvec3> rest(B);
   for (size_t e = 0; e < B.size(); ++e) rest[e] -= direct->element[e];
-  std::vector<glm::dvec3> out = vertexRadiosity(m, rest);
+  std::vector<glm::dvec3> out = direct->base ? substructured(m, *direct->base, rest) : vertexRadiosity(m, rest);
   for (size_t v = 0; v < out.size(); ++v) out[v] = glm::max(out[v] + direct->vertex[v], glm::dvec3(0.0));
   return out;
 }

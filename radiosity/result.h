@@ -18,13 +18,19 @@ namespace rad {
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
 
 /// Direct light known at the vertices (computed there by rays) and the part of each element's
-/// radiosity it replaces (what the solver's emitters delivered to it).
+/// radiosity it replaces (what the solver's emitters delivered to it). With `base`, the mesh
+/// as built before adaptive refinement, the rest (the indirect light) is reconstructed at the
+/// base mesh's resolution: refinement follows the direct light, and below the base size the
+/// hemicubes' indirect light on small elements is mostly aliasing (a few pixels each).
 struct VertexDirect {
   std::vector<glm::dvec3> element, vertex;
+  const PatchMesh* base = nullptr;
 };
 
 /// As above, with the direct light taken from the vertices: each element's direct part is
-/// taken out before the reconstruction, and the vertex's own direct light added after.
+/// taken out before the reconstruction, and the vertex's own direct light added after. With
+/// direct->base, the rest is averaged over each base element, reconstructed at the base
+/// mesh's vertices, and interpolated linearly inside each base element (substructuring).
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                                         const VertexDirect* direct);
 

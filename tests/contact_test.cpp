@@ -10,6 +10,7 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 #include "mesh/settings.h"
+#include "radiosity/adaptive.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/result.h"
 
@@ -105,12 +106,16 @@ constexpr double kLit = 0.2;
 
 /// Direct light only (the emitters shoot once each), default settings otherwise: the worst
 /// relative error of the displayed floor value at points `distances` mm out from the middle
-/// of every block side's base, against ρ·E·(exact visible factor).
-std::vector<NearBase> floorNearBlocks(bool cutContacts, const std::vector<double>& distances) {
+/// of every block side's base, against ρ·E·(exact visible factor). `adaptive` false: the
+/// uniform mesh graded along the contact lines, and the hemicubes' direct light shown.
+std::vector<NearBase> floorNearBlocks(bool cutContacts, bool adaptive,
+                                      const std::vector<double>& distances) {
   Scene scene = loadScene(kScenes + "cornell.json");
   Settings settings = resolveSettings(scene, SolverBlock{});
   settings.cutContacts = cutContacts;
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  settings.adaptive = settings.vertexDirect = adaptive;
+  SceneMesh meshed = meshScene(scene, settings);
+  const PatchMesh& mesh = meshed.mesh;
   int floor = -1, emitterPatches = 0;
   for (size_t s = 0; s < scene.surfaces.size(); ++s)
     if (scene.surfaces[s].name == "floor") floor = int(s);
@@ -122,7 +127,10 @@ std::vector<NearBase> floorNearBlocks(bool cutContacts, const std::vector<double
   ProgressiveSolver solver(mesh, factors, options);
   solver.run();
   EXPECT_EQ(solver.patchesNeverShot(), int(mesh.patches.size()) - emitterPatches);
-  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, solver.radiosity());
+  std::unique_ptr<VertexDirect> direct;
+  if (meshed.direct)
+    direct.reset(new VertexDirect{solver.direct(), meshed.direct->radiosity(), meshed.base.get()});
+  std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, solver.radiosity(), direct.get());
 
   const double rho = scene.materials[scene.surfaces[floor].material].reflectance.y;
   double E = 0;
@@ -154,17 +162,22 @@ std::vector<NearBase> floorNearBlocks(bool cutContacts, const std::vector<double
 }
 
 /// The floor 4 mm from a block's base is within 5 % of the exact direct light once the floor
-/// is cut at the block; uncut, the dark vertices under the block pull it far down.
+/// is cut at the block, whether graded by adaptive refinement (the default) or beforehand
+/// along the contact lines; uncut, the dark vertices under the block pull it far down.
 TEST(ContactTest, FloorNextToTheBlocksMatchesTheExactDirectLight) {
   const std::vector<double> distances = {4, 10, 25, 60};
-  auto cut = floorNearBlocks(true, distances);
-  auto uncut = floorNearBlocks(false, distances);
+  auto adaptive = floorNearBlocks(true, true, distances);
+  auto graded = floorNearBlocks(true, false, distances);
+  auto uncut = floorNearBlocks(false, false, distances);
   for (size_t i = 0; i < distances.size(); ++i)
-    std::printf("floor %2.0f mm from a block's base, worst error: lit points %.1f %% cut, %.1f %% "
-                "uncut; all points, of the unoccluded light, %.1f %% cut, %.1f %% uncut\n",
-                distances[i], 100 * cut[i].worstLit, 100 * uncut[i].worstLit,
-                100 * cut[i].worstOfUnoccluded, 100 * uncut[i].worstOfUnoccluded);
-  EXPECT_LE(cut[0].worstLit, kNearBaseTolerance);
+    std::printf("floor %2.0f mm from a block's base, worst error: lit points %.1f %% adaptive, "
+                "%.1f %% graded, %.1f %% uncut; all points, of the unoccluded light, %.1f %% "
+                "adaptive, %.1f %% graded, %.1f %% uncut\n",
+                distances[i], 100 * adaptive[i].worstLit, 100 * graded[i].worstLit,
+                100 * uncut[i].worstLit, 100 * adaptive[i].worstOfUnoccluded,
+                100 * graded[i].worstOfUnoccluded, 100 * uncut[i].worstOfUnoccluded);
+  EXPECT_LE(adaptive[0].worstLit, kNearBaseTolerance);
+  EXPECT_LE(graded[0].worstLit, kNearBaseTolerance);
   EXPECT_GT(uncut[0].worstLit, kNearBaseTolerance);
 }
 

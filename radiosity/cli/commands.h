@@ -42,6 +42,7 @@ struct SolvableScene {
   /// or settings.vertexDirect is off), and what adaptive refinement did with it.
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;
+  std::unique_ptr<PatchMesh> base;  ///< the mesh before refinement, if refined
 };
 SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags);
 /// Meshes a loaded scene by its settings: the uniform mesh, then adaptive refinement; the

@@ -99,7 +99,7 @@ void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
-  const auto& [scene, settings, mesh, direct, adaptive] = solvable;
+  const auto& [scene, settings, mesh, direct, adaptive, base] = solvable;
   SolverOptions options = solverOptions(settings);
   // One worker, so that every method's time is single-threaded and comparable.
   std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 1);

@@ -28,7 +28,7 @@ void runInfo(const InfoOptions& o) {
   auto start = std::chrono::steady_clock::now();
   const SolvableScene meshed = meshScene(std::move(loaded), o.flags, false);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto& [scene, settings, mesh, direct, adaptive] = meshed;
+  const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
 
   std::printf("scene       %s%s%s\n", scene.path.c_str(), scene.units.empty() ? "" : ", units ",
               scene.units.c_str());

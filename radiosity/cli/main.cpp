@@ -65,7 +65,7 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
 }
 
 SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter) {
-  SolvableScene s{std::move(scene), {}, {}, nullptr, {}};
+  SolvableScene s{std::move(scene), {}, {}, nullptr, {}, nullptr};
   s.settings = resolveSettings(s.scene, flags);
   SceneMesh meshed;
   meshed.mesh = buildPatchMesh(s.scene, s.settings.mesh());
@@ -83,6 +83,7 @@ SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter
   s.mesh = std::move(meshed.mesh);
   s.direct = std::move(meshed.direct);
   s.adaptive = meshed.adaptive;
+  s.base = std::move(meshed.base);
   return s;
 }
 

@@ -59,7 +59,7 @@ void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
-  const auto& [scene, settings, mesh, direct, adaptive] = solvable;
+  const auto& [scene, settings, mesh, direct, adaptive, base] = solvable;
   SolverOptions options = solverOptions(settings);
   std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 0);
   HemicubeFactors& factors = *hemicubes;
@@ -192,7 +192,7 @@ void runSolve(const SolveOptions& o) {
 
   // Outputs: each through a temporary file; the report last, so a report means a result.
   std::unique_ptr<VertexDirect> vertexDirect;
-  if (direct) vertexDirect.reset(new VertexDirect{solver.direct(), direct->radiosity()});
+  if (direct) vertexDirect.reset(new VertexDirect{solver.direct(), direct->radiosity(), base.get()});
   writeResult(o.output, mesh, B, ambient, exposure, camera, vertexDirect.get());
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
