@@ -37,7 +37,7 @@ Mesh::EdgeHandle longest(const Mesh& m, Mesh::FaceHandle f) {
 
 class Bisector {
  public:
-  explicit Bisector(PatchMesh& mesh) : pm_(mesh), m_(mesh.mesh) {}
+  Bisector(PatchMesh& mesh, std::vector<EdgeSplit>* splits) : pm_(mesh), m_(mesh.mesh), splits_(splits) {}
 
   /// Bisects f across its longest edge, after its LEPP neighbours as needed.
   void bisect(Mesh::FaceHandle f) {
@@ -68,6 +68,7 @@ class Bisector {
     }
     const size_t facesBefore = m_.n_faces();
     auto v = m_.add_vertex(mid);
+    if (splits_) splits_->push_back({v.idx(), a.idx(), b.idx()});
     m_.split_copy(e, v);  // the new faces copy their parent's properties
     for (auto& [f, area] : halved) pm_.setArea(f.idx(), area);
     // The new faces are the parents' other halves: they copied the parent's area.
@@ -80,6 +81,7 @@ class Bisector {
 
   PatchMesh& pm_;
   Mesh& m_;
+  std::vector<EdgeSplit>* splits_;
   int added_ = 0;
 };
 
@@ -89,9 +91,10 @@ double longestEdge(const PatchMesh& mesh, int e) {
   return std::sqrt(squaredLength(mesh.mesh, longest(mesh.mesh, Mesh::FaceHandle(e))));
 }
 
-int bisectElements(PatchMesh& mesh, const std::vector<int>& elements) {
+int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
+                   std::vector<EdgeSplit>* splits) {
   const int before = mesh.elementCount();
-  Bisector bisector(mesh);
+  Bisector bisector(mesh, splits);
   // An element listed may already have been halved by a neighbour's propagation path; it is
   // bisected once more all the same: what was asked is that it get smaller.
   for (int e : elements) {

@@ -15,7 +15,12 @@ namespace rad {
 /// takes half its parent's area, so patch and surface areas do not change. Elements are only
 /// added (existing indices keep their parent's first half); patch element lists, surface
 /// element counts and vertex normals are brought up to date. Returns the elements added.
-int bisectElements(PatchMesh& mesh, const std::vector<int>& elements);
+/// `splits`, if given, receives each vertex added and the ends of the edge it halves.
+struct EdgeSplit {
+  int vertex = -1, from = -1, to = -1;
+};
+int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
+                   std::vector<EdgeSplit>* splits = nullptr);
 
 /// The longest edge of element e.
 double longestEdge(const PatchMesh& mesh, int e);

@@ -85,19 +85,23 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
       auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
       const uint64_t key = edgeKey(a.idx(), b.idx());
       if (midpoints.count(key)) continue;
-      midpoints[key] = glm::dvec3(0.0);
+      midpoints[key] = VertexLight{};
       DirectLight::Probe p;
       p.point = (PatchMesh::toGlm(m.point(a)) + PatchMesh::toGlm(m.point(b))) * 0.5;
       p.normal = PatchMesh::toGlm(m.normal(a) + m.normal(b));
       p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : mesh.normal(e);
       p.rho = mesh.reflectance(e);
       p.inwards = mesh.centroid(e) - p.point;
+      // Where both ends see the same samples, so does the midpoint (a thin occluder seen
+      // from neither is the exception this accepts): its light needs no ray.
+      if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
+        p.visible = &vertices[size_t(a.idx())].visible;
       probes.push_back(p);
       probed.push_back(key);
     }
   }
-  const std::vector<glm::dvec3> found = light.radiosityAt(probes);
-  for (size_t k = 0; k < probed.size(); ++k) midpoints[probed[k]] = found[k];
+  std::vector<VertexLight> found = light.lightAt(probes);
+  for (size_t k = 0; k < probed.size(); ++k) midpoints[probed[k]] = std::move(found[k]);
 
   for (int e : candidates) {
     const double ambient = luminance(mesh.reflectance(e) * estimate.ambient);
@@ -111,7 +115,7 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
       corner[size_t(k++)] = a;
       const double interpolated =
           0.5 * (luminance(vertices[size_t(a)].radiosity) + luminance(vertices[size_t(b)].radiosity));
-      const double actual = luminance(midpoints.at(edgeKey(a, b)));
+      const double actual = luminance(midpoints.at(edgeKey(a, b)).radiosity);
       refine = refine || std::abs(shown(actual) - shown(interpolated)) > options.contrast;
     }
     // Shadow boundaries: light one vertex sees that another does not.
@@ -139,8 +143,17 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
     std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
-    bisectElements(mesh, marked);
-    light.update(mesh);
+    std::vector<EdgeSplit> splits;
+    bisectElements(mesh, marked, &splits);
+    // Each new vertex is the midpoint of the edge it split, where the light is known.
+    std::unordered_map<int, VertexLight> known;
+    for (const auto& s : splits) {
+      auto it = midpoints.find(uint64_t(std::min(s.from, s.to)) << 32 | uint64_t(std::max(s.from, s.to)));
+      if (it == midpoints.end()) continue;
+      known.emplace(s.vertex, std::move(it->second));
+      midpoints.erase(it);
+    }
+    light.update(mesh, &known);
     ++stats.rounds;
   }
   stats.elementsAfter = mesh.elementCount();

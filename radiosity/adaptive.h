@@ -39,8 +39,9 @@ struct DisplayEstimate {
 };
 DisplayEstimate estimateDisplay(const PatchMesh& mesh, const DirectLight& light);
 
-/// The direct light at edge midpoints already computed, by edge (its end vertices).
-using MidpointLight = std::unordered_map<uint64_t, glm::dvec3>;
+/// The direct light at edge midpoints already computed, by edge (its end vertices): when an
+/// edge is split, its new vertex takes it over.
+using MidpointLight = std::unordered_map<uint64_t, VertexLight>;
 
 /// The elements that need refining: longest edge above options.minElementEdge, and either
 /// - at the midpoint of one of their edges, the direct light differs from what Gouraud

@@ -199,8 +199,12 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
       const double w = cosHere * cosThere / (r2 * r2);
       ++above;
       all += w;
-      ++raysCast;
-      if (rays_impl_->blocked(origin, points_[size_t(j)])) continue;
+      if (probe.visible) {
+        if (!((*probe.visible)[size_t(j / 64)] >> (j % 64) & 1)) continue;
+      } else {
+        ++raysCast;
+        if (rays_impl_->blocked(origin, points_[size_t(j)])) continue;
+      }
       visible += w;
       out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
     }
@@ -212,16 +216,15 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   return out;
 }
 
-std::vector<glm::dvec3> DirectLight::radiosityAt(const std::vector<Probe>& probes) {
-  std::vector<glm::dvec3> out(probes.size(), glm::dvec3(0.0));
+std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) {
+  std::vector<VertexLight> out(probes.size());
   if (!enabled_) return out;
   std::atomic<size_t> next{0};
   std::atomic<long> rays{0};
   auto work = [&] {
     long cast = 0;
     for (size_t i; (i = next.fetch_add(64)) < probes.size();)
-      for (size_t k = i; k < std::min(probes.size(), i + 64); ++k)
-        out[k] = compute(probes[k], cast).radiosity;
+      for (size_t k = i; k < std::min(probes.size(), i + 64); ++k) out[k] = compute(probes[k], cast);
     rays += cast;
   };
   std::vector<std::thread> threads;
@@ -232,25 +235,32 @@ std::vector<glm::dvec3> DirectLight::radiosityAt(const std::vector<Probe>& probe
   return out;
 }
 
-void DirectLight::update(const PatchMesh& mesh) {
+std::vector<glm::dvec3> DirectLight::radiosityAt(const std::vector<Probe>& probes) {
+  std::vector<glm::dvec3> out;
+  for (auto& light : lightAt(probes)) out.push_back(light.radiosity);
+  return out;
+}
+
+void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known) {
   if (!enabled_) return;
   const size_t from = vertices_.size(), to = mesh.mesh.n_vertices();
   if (from >= to) return;
   vertices_.resize(to);
-  std::atomic<size_t> next{from};
-  std::atomic<long> rays{0};
-  auto work = [&] {
-    long cast = 0;
-    for (size_t i; (i = next.fetch_add(64)) < to;)
-      for (size_t k = i; k < std::min(to, i + 64); ++k)
-        vertices_[k] = compute(probeAt(mesh, TriMesh::VertexHandle(int(k))), cast);
-    rays += cast;
-  };
-  std::vector<std::thread> threads;
-  for (int w = 1; w < workers_; ++w) threads.emplace_back(work);
-  work();
-  for (auto& t : threads) t.join();
-  rays_ += rays;
+  std::vector<Probe> probes;
+  std::vector<size_t> at;
+  for (size_t k = from; k < to; ++k) {
+    if (known) {
+      auto it = known->find(int(k));
+      if (it != known->end()) {
+        vertices_[k] = std::move(it->second);
+        continue;
+      }
+    }
+    probes.push_back(probeAt(mesh, TriMesh::VertexHandle(int(k))));
+    at.push_back(k);
+  }
+  std::vector<VertexLight> found = lightAt(probes);
+  for (size_t i = 0; i < at.size(); ++i) vertices_[at[i]] = std::move(found[i]);
 }
 
 std::vector<glm::dvec3> DirectLight::radiosity() const {

@@ -4,6 +4,7 @@
 // resolution, and the visibility facts adaptive refinement decides by.
 #include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -50,8 +51,9 @@ class DirectLight {
 
   /// Whether the scene's emitters are few enough for rays (kMaxRayEmitterPatches).
   bool enabled() const { return enabled_; }
-  /// Computes the vertices of `mesh` (the same mesh, perhaps refined) not yet computed.
-  void update(const PatchMesh& mesh);
+  /// Computes the vertices of `mesh` (the same mesh, perhaps refined) not yet computed;
+  /// those in `known` (by vertex index) are taken from there (moved out).
+  void update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known = nullptr);
   const std::vector<VertexLight>& vertices() const { return vertices_; }
   const std::vector<LightPolygon>& lights() const { return lights_; }
   int samples() const { return samples_; }
@@ -63,8 +65,12 @@ class DirectLight {
   /// reflectance `rho`; rays start a little off it, towards `inwards` (its own elements).
   struct Probe {
     glm::dvec3 point{0.0}, normal{0.0}, rho{0.0}, inwards{0.0};
+    /// If set, the samples visible from the point are taken to be these, and no ray is cast
+    /// (between two vertices that see the same samples).
+    const std::vector<uint64_t>* visible = nullptr;
   };
-  /// The direct light at each probe (radiosity), on all workers.
+  /// The direct light at each probe, on all workers.
+  std::vector<VertexLight> lightAt(const std::vector<Probe>& probes);
   std::vector<glm::dvec3> radiosityAt(const std::vector<Probe>& probes);
 
  private:
