@@ -107,7 +107,10 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
     light.normal = patch.normal;
     light.emission = mesh.emission(patch.elements[0]);
     light.first = int(points_.size());
-    for (const ShooterSample& s : patchSamples(mesh, p, count)) points_.push_back(s.point + light.normal * offset);
+    for (const ShooterSample& s : patchSamples(mesh, p, count)) {
+      onLight_.push_back(s.point);
+      points_.push_back(s.point + light.normal * offset);
+    }
     light.count = int(points_.size()) - light.first;
     std::vector<glm::dvec3> outline = patchOutline(mesh, patch);
     if (!outline.empty()) {
@@ -177,11 +180,16 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   VertexLight out;
   out.visible.assign(size_t((samples_ + 63) / 64), 0);
   out.weight.assign(lights_.size(), 0.0f);
-  const glm::dvec3 &p = probe.point, &n = probe.normal, &rho = probe.rho;
+  const glm::dvec3 &n = probe.normal, &rho = probe.rho;
   if (rho == glm::dvec3(0.0)) return out;  // black: nothing to show
+  // Everything is evaluated a little off the surface and inwards: the light a point on a
+  // surface's edge shows is the limit from inside the surface (a floor point at the foot of a
+  // glowing wall sees half its hemisphere filled by it, not the wall edge-on).
   const double offset = kRayOffset * sceneSize_;
   const double inwards = glm::length(probe.inwards);
-  const glm::dvec3 origin = p + n * offset + (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
+  const glm::dvec3 p = probe.point + n * offset +
+                       (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
+  const glm::dvec3& origin = p;
   for (size_t t = 0; t < lights_.size(); ++t) {
     const LightPolygon& light = lights_[t];
     if (glm::dot(light.normal, p - light.outline[0]) <= 0) continue;  // behind the emitter
@@ -193,7 +201,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
     int above = 0;
     double all = 0, visible = 0;
     for (int j = light.first; j < light.first + light.count; ++j) {
-      const glm::dvec3 d = points_[size_t(j)] - p;
+      const glm::dvec3 d = onLight_[size_t(j)] - p;
       const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
       if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
       const double w = cosHere * cosThere / (r2 * r2);

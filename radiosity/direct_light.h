@@ -80,7 +80,8 @@ class DirectLight {
   struct Rays;
   std::unique_ptr<Rays> rays_impl_;
   std::vector<LightPolygon> lights_;
-  std::vector<glm::dvec3> points_;  // sample points, already moved off their emitter
+  std::vector<glm::dvec3> onLight_;  // sample points
+  std::vector<glm::dvec3> points_;   // the same, moved off their emitter: where rays end
   std::vector<VertexLight> vertices_;
   double sceneSize_ = 1;
   int samples_ = 0, workers_ = 1;

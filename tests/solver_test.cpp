@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
+#include "mesh/refine.h"
 #include "mesh/scene.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/reference_solver.h"
@@ -22,6 +23,8 @@ const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
 constexpr double kTable = 1e-6;
 /// The ledger closes to round-off relative to the power shot.
 constexpr double kLedger = 1e-9;
+/// Light escaping a closed box, of what was emitted: round-off only.
+constexpr double kLeak = 1e-9;
 
 /// Exact factors injected per surface: F[from surface][to surface], shared among the target
 /// surface's elements by area.
@@ -272,23 +275,29 @@ TEST(ScaleTest, RadiosityIsScaleInvariant) {
 }
 
 
-/// scenes/penumbra.json: a 100×100 light 200 above the floor, a 40×40 black square 100 above
-/// it. The exact direct factor from a floor point x is the light's minus that of the part of
-/// it the square hides, which is the light ∩ the square projected from x (scale 2).
+/// scenes/penumbra.json: a 100×100 light 200 above the floor, a black square 100 above it,
+/// here 40×40 (the file's is 60×60). The exact direct factor from a floor point x is the
+/// light's minus that of the part of it the square hides, which is the light ∩ the square
+/// projected from x (scale 2): no umbra; a penumbra out to |x| or |z| = 90.
+constexpr double kBlockerHalf = 20;
 double visibleLightFactor(const glm::dvec3& x) {
   auto rect = [](double x0, double x1, double z0, double z1) {
     return std::vector<glm::dvec3>{{x0, 200, z0}, {x1, 200, z0}, {x1, 200, z1}, {x0, 200, z1}};
   };
   const glm::dvec3 up(0, 1, 0);
   double f = pointPolygonFormFactor(x, up, rect(-50, 50, -50, 50));
-  double x0 = std::max(-50.0, -40 - x.x), x1 = std::min(50.0, 40 - x.x);
-  double z0 = std::max(-50.0, -40 - x.z), z1 = std::min(50.0, 40 - x.z);
+  const double h = 2 * kBlockerHalf;
+  double x0 = std::max(-50.0, -h - x.x), x1 = std::min(50.0, h - x.x);
+  double z0 = std::max(-50.0, -h - x.z), z1 = std::min(50.0, h - x.z);
   if (x0 < x1 && z0 < z1) f -= pointPolygonFormFactor(x, up, rect(x0, x1, z0, z1));
   return f;
 }
 
 TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
   Scene scene = loadScene(kScenes + "penumbra.json");
+  for (auto& s : scene.surfaces)
+    if (s.name == "blocker")
+      for (auto& p : s.polygons[0].outer) p.x = std::copysign(kBlockerHalf, p.x), p.z = std::copysign(kBlockerHalf, p.z);
   Settings settings = resolveSettings(scene, SolverBlock{});
   PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
   HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed);
@@ -447,7 +456,7 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
 /// system is solved directly on exactly those factors (the progressive solver converges to
 /// the same solution: ReferenceTest.EverySolverConvergesToTheDirectSolutionOnTheSameFactors). What is left is the
 /// proximity error of point-sampled shooters next to the cube's edges.
-TEST(FurnaceTest, EveryElementWithinTolerance) {
+void furnace(bool refine) {
   constexpr int kGrid = 8;
   constexpr int kSamplesPerSquare = 64;
   constexpr int kResolution = 256;
@@ -467,24 +476,55 @@ TEST(FurnaceTest, EveryElementWithinTolerance) {
   PatchMesh mesh = buildPatchMesh(scene, {side * std::sqrt(2.0) * 1.001, side * std::sqrt(2.0) * 1.001});
   ASSERT_EQ(mesh.elementCount(), 6 * kGrid * kGrid * 2);
   ASSERT_EQ(int(mesh.patches.size()), 6 * kGrid * kGrid);
+  if (refine) {
+    // Every third element bisected, twice over, as adaptive refinement would.
+    for (int round = 0; round < 2; ++round) {
+      std::vector<int> some;
+      for (int e = 0; e < mesh.elementCount(); e += 3) some.push_back(e);
+      bisectElements(mesh, some);
+    }
+    ASSERT_GT(mesh.elementCount(), 2 * 6 * kGrid * kGrid * 2);
+    ASSERT_TRUE(findTJunctions(mesh).empty());
+  }
 
   SolverOptions options;
   options.emitterSamples = options.shooterSamples = kSamplesPerSquare;
   HemicubeFactors factors(mesh, kResolution, scene.diagonal(), 1);
   TransportMatrix transport(mesh, factors, options);
   const int n = transport.size();
-  const struct {
+  // No leak: in the closed cube every hemicube pixel sees an element, so nothing escapes
+  // (a crack at a T-junction would let light out).
+  {
+    SolverOptions shoot = options;
+    shoot.maxShots = 200;
+    ProgressiveSolver solver(mesh, factors, shoot);
+    solver.run();
+    EXPECT_LE(luminance(solver.ledger().escaped), kLeak * luminance(solver.ledger().emitted));
+  }
+  struct Case {
     double rho, tolerance;
-  } cases[] = {{0.5, 0.005}, {0.9, 0.01}, {0.99, 0.02}};
+  };
+  // Refined, the receivers next to the cube's edges are a quarter of a square and smaller,
+  // close to the adjacent square's 64 shooting points: point factors are not reciprocal, and
+  // less so for small receivers near shooters (oracles.md, furnace), hence wider limits.
+  const std::vector<Case> cases = refine ? std::vector<Case>{{0.5, 0.015}, {0.9, 0.03}, {0.99, 0.03}}
+                                         : std::vector<Case>{{0.5, 0.005}, {0.9, 0.01}, {0.99, 0.02}};
   for (const auto& c : cases) {
     Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - c.rho * transport.G();
     Eigen::VectorXd B = A.partialPivLu().solve(Eigen::VectorXd::Ones(n));
     double worst = 0;
     for (int e = 0; e < n; ++e) worst = std::max(worst, std::abs(B(e) * (1 - c.rho) - 1));
     EXPECT_LE(worst, c.tolerance) << "rho " << c.rho;
-    std::printf("furnace rho %.2f: worst element off by %.3f %%\n", c.rho, 100 * worst);
+    std::printf("furnace%s rho %.2f: worst element off by %.3f %% (%d elements)\n",
+                refine ? " refined" : "", c.rho, 100 * worst, n);
   }
 }
+
+TEST(FurnaceTest, EveryElementWithinTolerance) { furnace(false); }
+
+/// The same cube with elements bisected the way adaptive refinement does it (conforming):
+/// nothing leaks, and the smaller receivers hold the furnace within wider limits.
+TEST(FurnaceTest, HoldsAfterRefinement) { furnace(true); }
 
 
 /// Every element's power is shot exactly once in total (weights sum to 1), from exactly as

@@ -1,0 +1,215 @@
+// Adaptive subdivision: conforming output meshes, the energy ledger and the furnace after
+// refinement, shadow boundaries where geometry puts them, and no refinement where nothing
+// changes.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "mesh/color.h"
+#include "mesh/error.h"
+#include "mesh/refine.h"
+#include "mesh/scene.h"
+#include "mesh/settings.h"
+#include "radiosity/adaptive.h"
+#include "radiosity/point_polygon.h"
+#include "radiosity/progressive_solver.h"
+#include "radiosity/result.h"
+
+namespace rad {
+namespace {
+
+const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+constexpr double kLedger = 1e-9;
+
+/// A scene meshed and solved the way `radiosity solve` does it, with the vertex radiosities
+/// it would write.
+struct Solved {
+  Scene scene;
+  Settings settings;
+  SceneMesh meshed;
+  std::unique_ptr<ProgressiveSolver> solver;
+  std::unique_ptr<HemicubeFactors> factors;
+  std::vector<glm::dvec3> vertexB;
+};
+
+std::unique_ptr<Solved> solve(const std::string& path, SolverBlock flags = {}, double tolerance = 0) {
+  auto s = std::make_unique<Solved>();
+  s->scene = loadScene(path);
+  s->settings = resolveSettings(s->scene, flags);
+  s->meshed = meshScene(s->scene, s->settings);
+  const PatchMesh& mesh = s->meshed.mesh;
+  s->factors = std::make_unique<HemicubeFactors>(mesh, s->settings.hemicubeResolution,
+                                                 s->scene.diagonal(), s->settings.seed, 0,
+                                                 s->settings.emitterHemicubeResolution);
+  SolverOptions options;
+  options.tolerance = tolerance > 0 ? tolerance : s->settings.tolerance;
+  options.overshoot = s->settings.overshoot;
+  options.emitterSamples = s->settings.emitterSamples;
+  s->solver = std::make_unique<ProgressiveSolver>(mesh, *s->factors, options);
+  s->solver->run();
+  std::unique_ptr<VertexDirect> direct;
+  if (s->meshed.direct)
+    direct.reset(new VertexDirect{s->solver->direct(), s->meshed.direct->radiosity(), s->meshed.base.get()});
+  s->vertexB = vertexRadiosity(mesh, s->solver->radiosity(), direct.get());
+  return s;
+}
+
+/// Every scene the project ships and tests with, meshed as `radiosity solve` meshes it
+/// (adaptive refinement on): no vertex inside another element's edge of its surface side.
+TEST(AdaptiveTest, EveryOutputMeshIsConforming) {
+  std::vector<std::string> paths;
+  for (const char* dir : {"scenes", "scenes/stress", "tests/data"})
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(RAD_SOURCE_DIR) + "/" + dir))
+      if (entry.path().extension() == ".json") paths.push_back(entry.path().string());
+  std::sort(paths.begin(), paths.end());
+  ASSERT_GE(paths.size(), 20u);
+  int refined = 0;
+  for (const auto& path : paths) {
+    Scene scene;
+    try {
+      scene = loadScene(path);
+    } catch (const InputError&) {
+      continue;  // the invalid examples of tests/data
+    }
+    Settings settings = resolveSettings(scene, SolverBlock{});
+    SceneMesh meshed = meshScene(scene, settings);
+    refined += meshed.adaptive.elementsAfter > meshed.adaptive.elementsBefore;
+    auto found = findTJunctions(meshed.mesh);
+    EXPECT_TRUE(found.empty()) << path << ": " << found.size() << " T-junctions, the first at vertex "
+                               << (found.empty() ? -1 : found[0].vertex);
+  }
+  EXPECT_GE(refined, 5);  // the check saw refined meshes, not only untouched ones
+}
+
+/// The Cornell box, refined: the ledger closes after every shot, the meshed area is the
+/// surfaces' area, and no radiosity is negative or NaN.
+TEST(AdaptiveTest, LedgerBalancesAfterRefinement) {
+  auto s = solve(kScenes + "cornell.json");
+  const PatchMesh& mesh = s->meshed.mesh;
+  EXPECT_GT(s->meshed.adaptive.elementsAfter, 2 * s->meshed.adaptive.elementsBefore);
+  EXPECT_GT(s->meshed.adaptive.rounds, 1);
+  EXPECT_LE(s->solver->ledger().residual(), kLedger);
+  EXPECT_EQ(s->solver->stopReason(), ProgressiveSolver::Stop::Tolerance);
+  for (size_t sf = 0; sf < mesh.surfaces.size(); ++sf) {
+    double area = 0;
+    for (int e = 0; e < mesh.elementCount(); ++e)
+      if (mesh.surface(e) == int(sf) && mesh.side(e) == 0) area += mesh.area(e);
+    EXPECT_NEAR(area / mesh.surfaces[sf].area, 1.0, 1e-9) << sf;
+  }
+  for (const auto& b : s->vertexB) {
+    EXPECT_TRUE(std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z));
+    EXPECT_GE(std::min({b.x, b.y, b.z}), 0.0);
+  }
+}
+
+/// The furnace (oracles.md §4: one glowing closed cube) needs no refinement: nothing changes
+/// across it. Every patch glows: rays from the vertices to every one of them would cost more
+/// than they show (kMaxRayEmitterPatches), so none are cast; with patches wide enough to be
+/// few, the rays' direct light at every vertex is ρ·E, the exact factors to the five other
+/// faces summing to one (at the cube's edges too: the limit from inside each face). That
+/// refined elements still hold the furnace: FurnaceTest.HoldsAfterRefinement.
+TEST(AdaptiveTest, FurnaceNeedsNoRefinement) {
+  const Scene furnace = loadScene(kScenes + "furnace.json");
+  const SceneMesh many = meshScene(furnace, resolveSettings(furnace, {}));
+  EXPECT_EQ(many.adaptive.elementsAfter, many.adaptive.elementsBefore);
+  EXPECT_EQ(many.direct, nullptr);
+  SolverBlock flags;
+  flags.maxPatchEdge = 0.5;
+  const SceneMesh few = meshScene(furnace, resolveSettings(furnace, flags));
+  EXPECT_EQ(few.adaptive.elementsAfter, few.adaptive.elementsBefore);
+  ASSERT_NE(few.direct, nullptr);
+  constexpr double kExactSum = 1e-4;  // the rays start 1e-5 of the scene size inwards
+  for (const auto& d : few.direct->radiosity()) EXPECT_NEAR(d.x, 0.5, 0.5 * kExactSum);
+}
+
+/// The value Gouraud shading shows at x on the floor: barycentric interpolation of the
+/// vertex values in the element that contains x.
+double shownAt(const PatchMesh& mesh, int surface, const std::vector<glm::dvec3>& vertexB,
+               const glm::dvec3& x) {
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) != surface) continue;
+    const auto c = mesh.corners(e);
+    const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+    double w[3];
+    bool inside = true;
+    for (int k = 0; k < 3 && inside; ++k) {
+      w[k] = glm::dot(glm::cross(c[(k + 2) % 3] - c[(k + 1) % 3], x - c[(k + 1) % 3]), n) / glm::dot(n, n);
+      inside = w[k] >= -1e-12;
+    }
+    if (!inside) continue;
+    double value = 0;
+    int k = 0;
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) value += w[k++] * vertexB[size_t(v.idx())].x;
+    return value;
+  }
+  return NAN;
+}
+
+/// The exact visible factor of scenes/penumbra.json's light from floor point x: the light's
+/// minus the part the 60×60 square 100 above the floor hides (the square projected from x,
+/// scale 2, clipped to the light).
+double penumbraVisibleFactor(const glm::dvec3& x) {
+  auto rect = [](double x0, double x1, double z0, double z1) {
+    return std::vector<glm::dvec3>{{x0, 200, z0}, {x1, 200, z0}, {x1, 200, z1}, {x0, 200, z1}};
+  };
+  double f = pointPolygonFormFactor(x, {0, 1, 0}, rect(-50, 50, -50, 50));
+  double x0 = std::max(-50.0, -60 - x.x), x1 = std::min(50.0, 60 - x.x);
+  double z0 = std::max(-50.0, -60 - x.z), z1 = std::min(50.0, 60 - x.z);
+  if (x0 < x1 && z0 < z1) f -= pointPolygonFormFactor(x, {0, 1, 0}, rect(x0, x1, z0, z1));
+  return f;
+}
+
+/// scenes/penumbra.json meshed from 24 mm elements down to 3 mm: along the floor's middle
+/// line, where the shown light first rises above 2 % of the unoccluded light (the umbra's
+/// edge, geometrically at 10) and where it reaches 98 % (the penumbra's outer edge, at 110)
+/// are where the exact visible factor puts them, within one minimum element edge; with
+/// fewer elements than a uniform mesh at that edge.
+TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
+  constexpr double kBase = 24, kMin = 3;
+  SolverBlock flags;
+  flags.maxElementEdge = kBase;
+  flags.minElementEdge = kMin;
+  auto s = solve(kScenes + "penumbra.json", flags);
+  const PatchMesh& mesh = s->meshed.mesh;
+  int floor = -1;
+  for (size_t i = 0; i < s->scene.surfaces.size(); ++i)
+    if (s->scene.surfaces[i].name == "floor") floor = int(i);
+  const double rho = 0.5;
+  const std::vector<glm::dvec3> light = {{-50, 200, -50}, {50, 200, -50}, {50, 200, 50}, {-50, 200, 50}};
+  for (int axis : {0, 2}) {
+    // First crossings going outwards from the middle, on both halves of the line.
+    for (double sign : {-1.0, 1.0}) {
+      double shownUmbra = NAN, exactUmbra = NAN, shownOuter = NAN, exactOuter = NAN;
+      for (double t = 0; t <= 140; t += 0.25) {
+        glm::dvec3 x(0.0);
+        x[axis] = sign * t;
+        const double open = rho * pointPolygonFormFactor(x, {0, 1, 0}, light);
+        const double shown = shownAt(mesh, floor, s->vertexB, x) / open;
+        const double exact = rho * penumbraVisibleFactor(x) / open;
+        if (std::isnan(shownUmbra) && shown > 0.02) shownUmbra = t;
+        if (std::isnan(exactUmbra) && exact > 0.02) exactUmbra = t;
+        if (std::isnan(shownOuter) && shown >= 0.98) shownOuter = t;
+        if (std::isnan(exactOuter) && exact >= 0.98) exactOuter = t;
+      }
+      std::printf("axis %d, side %+.0f: umbra edge shown at %.2f, exact %.2f; penumbra edge shown at "
+                  "%.2f, exact %.2f\n", axis, sign, shownUmbra, exactUmbra, shownOuter, exactOuter);
+      EXPECT_NEAR(exactUmbra, 10, 3);
+      EXPECT_NEAR(shownUmbra, exactUmbra, kMin);
+      EXPECT_NEAR(shownOuter, exactOuter, kMin);
+    }
+  }
+  const PatchMesh uniform = buildPatchMesh(s->scene, {kMin, s->settings.maxPatchEdge, true, 1});
+  std::printf("penumbra scene: %d elements adaptive, %d uniform at the minimum edge\n",
+              mesh.elementCount(), uniform.elementCount());
+  EXPECT_LT(mesh.elementCount(), uniform.elementCount() / 3);
+  EXPECT_TRUE(findTJunctions(mesh).empty());
+}
+
+}  // namespace
+}  // namespace rad

@@ -1,0 +1,107 @@
+// Conforming refinement: longest-edge bisection keeps the mesh free of T-junctions, areas
+// and element attributes; the T-junction check finds what it should.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <gtest/gtest.h>
+
+#include "mesh/geometry.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/refine.h"
+
+namespace rad {
+namespace {
+
+const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+/// Bisection halves areas exactly; geometry agrees to round-off.
+constexpr double kAreaTolerance = 1e-9;
+
+/// The angle at a, degrees.
+double angleAt(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(b - a), glm::normalize(c - a)), -1.0, 1.0)));
+}
+
+double smallestAngle(const PatchMesh& m) {
+  double least = 180;
+  for (int e = 0; e < m.elementCount(); ++e) {
+    auto c = m.corners(e);
+    least = std::min({least, angleAt(c[0], c[1], c[2]), angleAt(c[1], c[2], c[0]),
+                      angleAt(c[2], c[0], c[1])});
+  }
+  return least;
+}
+
+/// Every element listed, and those their propagation paths reach, bisected three times over;
+/// the mesh stays conforming, each element keeps its base element's attributes, areas add
+/// up, and angles stay above half the smallest before (Rivara's bound).
+TEST(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
+  Scene scene = loadScene(kScenes + "cornell.json");
+  PatchMesh m = buildPatchMesh(scene, {55, 165, true, 1});
+  const PatchMesh before = m;
+  ASSERT_TRUE(findTJunctions(m).empty());
+  const double angleBefore = smallestAngle(m);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<int> some;
+    for (int e = 0; e < m.elementCount(); e += 5) some.push_back(e);
+    const int added = bisectElements(m, some);
+    EXPECT_GE(added, int(some.size()));
+  }
+  EXPECT_TRUE(findTJunctions(m).empty());
+  EXPECT_GE(smallestAngle(m), angleBefore / 2 - 1e-9);
+  std::vector<double> patchArea(m.patches.size(), 0.0);
+  for (int e = 0; e < m.elementCount(); ++e) {
+    const int b = m.base(e);
+    ASSERT_GE(b, 0);
+    ASSERT_LT(b, before.elementCount());
+    EXPECT_EQ(m.surface(e), before.surface(b));
+    EXPECT_EQ(m.side(e), before.side(b));
+    EXPECT_EQ(m.patch(e), before.patch(b));
+    EXPECT_EQ(m.reflectance(e), before.reflectance(b));
+    EXPECT_EQ(m.emission(e), before.emission(b));
+    EXPECT_GT(glm::dot(m.normal(e), before.normal(b)), 1 - 1e-12);
+    auto c = m.corners(e);
+    EXPECT_NEAR(m.area(e) / triangleArea(c[0], c[1], c[2]), 1.0, kAreaTolerance);
+    // The element lies inside its base element.
+    auto p = before.corners(b);
+    const glm::dvec3 centre = (c[0] + c[1] + c[2]) / 3.0, n = glm::cross(p[1] - p[0], p[2] - p[0]);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_GE(glm::dot(glm::cross(p[(k + 1) % 3] - p[k], centre - p[k]), n), 0);
+    patchArea[size_t(m.patch(e))] += m.area(e);
+  }
+  for (size_t p = 0; p < m.patches.size(); ++p) {
+    EXPECT_NEAR(patchArea[p] / before.patches[p].area, 1.0, kAreaTolerance);
+    for (int e : m.patches[p].elements) EXPECT_EQ(m.patch(e), int(p));
+  }
+  int listed = 0;
+  for (const auto& p : m.patches) listed += int(p.elements.size());
+  EXPECT_EQ(listed, m.elementCount());
+}
+
+/// Two triangles of one surface on either side of a line, one of them split at the line's
+/// midpoint without the other: the midpoint is a T-junction. Split conformingly, none.
+TEST(RefineTest, FindsTJunctions) {
+  auto square = [](bool conforming) {
+    PatchMesh m;
+    m.surfaces.resize(1);
+    auto v = [&](double x, double y) { return m.mesh.add_vertex({x, y, 0}); };
+    auto a = v(0, 0), b = v(2, 0), c = v(2, 2), d = v(0, 2), mid = v(1, 1);
+    std::vector<std::array<TriMesh::VertexHandle, 3>> faces;
+    if (conforming) faces = {{a, b, mid}, {b, c, mid}, {c, d, mid}, {d, a, mid}};
+    else faces = {{a, b, c}, {c, d, mid}, {d, a, mid}};  // mid lies inside edge a–c
+    for (const auto& f : faces) {
+      auto h = m.mesh.add_face(f[0], f[1], f[2]);
+      m.setElement(h.idx(), 0, 0, 1.0, glm::dvec3(0.5), glm::dvec3(0.0), {0, 0, 1});
+      m.setPatch(h.idx(), 0);
+    }
+    return m;
+  };
+  auto found = findTJunctions(square(false));
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].vertex, 4);
+  EXPECT_TRUE(findTJunctions(square(true)).empty());
+}
+
+}  // namespace
+}  // namespace rad
