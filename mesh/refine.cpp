@@ -35,9 +35,20 @@ Mesh::EdgeHandle longest(const Mesh& m, Mesh::FaceHandle f) {
   return best;
 }
 
+/// Exact positions, bit for bit: where surfaces meet, their vertices were made from the same
+/// points, and midpoints of equal ends are equal.
+struct PositionHash {
+  size_t operator()(const OpenMesh::Vec3d& p) const {
+    std::hash<double> h;
+    return h(p[0]) ^ (h(p[1]) * 0x9e3779b97f4a7c15ull) ^ (h(p[2]) * 0xc2b2ae3d27d4eb4full);
+  }
+};
+
 class Bisector {
  public:
-  Bisector(PatchMesh& mesh, std::vector<EdgeSplit>* splits) : pm_(mesh), m_(mesh.mesh), splits_(splits) {}
+  Bisector(PatchMesh& mesh, std::vector<EdgeSplit>* splits) : pm_(mesh), m_(mesh.mesh), splits_(splits) {
+    for (auto v : m_.vertices()) at_.emplace(m_.point(v), v.idx());
+  }
 
   /// Bisects f across its longest edge, after its LEPP neighbours as needed.
   void bisect(Mesh::FaceHandle f) {
@@ -56,6 +67,40 @@ class Bisector {
   int added() const { return added_; }
 
  private:
+  /// Splits the edge from a to b at its midpoint, bisecting the element beside it until that
+  /// edge is its longest (within its surface side, conformingly as ever).
+  void splitEdgeBetween(Mesh::VertexHandle a, Mesh::VertexHandle b) {
+    for (;;) {
+      auto h = m_.find_halfedge(a, b);
+      if (!h.is_valid()) return;  // split already
+      auto f = m_.face_handle(h).is_valid() ? m_.face_handle(h) : m_.opposite_face_handle(h);
+      auto e = m_.edge_handle(h);
+      if (!f.is_valid() || longest(m_, f) == e) {
+        split(e);
+        return;
+      }
+      bisect(f);
+    }
+  }
+
+  /// Where an edge is split, the edges of other surfaces (or of faces with their own
+  /// corners) between the same two points are split too: no T-junction where surfaces meet
+  /// (a wall on a floor, a board along a line across it), no crack for light to leak through.
+  void splitTwins(Mesh::VertexHandle a, Mesh::VertexHandle b) {
+    std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twins;
+    auto [lo, hi] = at_.equal_range(m_.point(a));
+    for (auto it = lo; it != hi; ++it) {
+      Mesh::VertexHandle a2(it->second);
+      if (a2 == a) continue;
+      auto [lo2, hi2] = at_.equal_range(m_.point(b));
+      for (auto jt = lo2; jt != hi2; ++jt) {
+        Mesh::VertexHandle b2(jt->second);
+        if (b2 != b && m_.find_halfedge(a2, b2).is_valid()) twins.emplace_back(a2, b2);
+      }
+    }
+    for (auto [a2, b2] : twins) splitEdgeBetween(a2, b2);
+  }
+
   void split(Mesh::EdgeHandle e) {
     auto h = m_.halfedge_handle(e, 0);
     const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
@@ -77,11 +122,14 @@ class Bisector {
     // The new vertex lies on the edge, so it takes the edge's mean normal.
     auto n = m_.normal(a) + m_.normal(b);
     m_.set_normal(v, n.norm() > 0 ? n.normalized() : n);
+    at_.emplace(mid, v.idx());
+    splitTwins(a, b);
   }
 
   PatchMesh& pm_;
   Mesh& m_;
   std::vector<EdgeSplit>* splits_;
+  std::unordered_multimap<OpenMesh::Vec3d, int, PositionHash> at_;  // vertices by position
   int added_ = 0;
 };
 
@@ -111,7 +159,7 @@ int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
   return mesh.elementCount() - before;
 }
 
-std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance) {
+std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance, bool acrossSurfaces) {
   const Mesh& m = pm.mesh;
   std::vector<TJunction> out;
   if (m.n_vertices() == 0) return out;
@@ -164,7 +212,7 @@ std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance) {
           auto [lo, hi] = grid.equal_range(cellKey(x, y, z));
           for (auto it = lo; it != hi; ++it) {
             int w = it->second;
-            if (w == a.idx() || w == b.idx() || side[w] != side[a.idx()]) continue;
+            if (w == a.idx() || w == b.idx() || (!acrossSurfaces && side[w] != side[a.idx()])) continue;
             const auto pw = m.point(Mesh::VertexHandle(w));
             const double t = ((pw - pa) | d) / len2;
             if (t <= tolerance || t >= 1 - tolerance) continue;

@@ -504,10 +504,12 @@ void furnace(bool refine) {
   struct Case {
     double rho, tolerance;
   };
-  // Refined, the receivers next to the cube's edges are a quarter of a square and smaller,
-  // close to the adjacent square's 64 shooting points: point factors are not reciprocal, and
-  // less so for small receivers near shooters (oracles.md, furnace), hence wider limits.
-  const std::vector<Case> cases = refine ? std::vector<Case>{{0.5, 0.015}, {0.9, 0.03}, {0.99, 0.03}}
+  // Refined, the receivers along the cube's edges are down to a sixteenth of a square (the
+  // edges are split on both faces that meet there), right beside the adjacent square's 64
+  // shooting points: point factors are not reciprocal, less so the smaller the receiver near
+  // a shooter (oracles.md, furnace: 2.2 / 4.8 / 5.6 % for element-sized shooters from their
+  // centres). Measured 2.3 / 4.3 / 4.8 %; the limits leave a fifth of that for other seeds.
+  const std::vector<Case> cases = refine ? std::vector<Case>{{0.5, 0.03}, {0.9, 0.055}, {0.99, 0.06}}
                                          : std::vector<Case>{{0.5, 0.005}, {0.9, 0.01}, {0.99, 0.02}};
   for (const auto& c : cases) {
     Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - c.rho * transport.G();
