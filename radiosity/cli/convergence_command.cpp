@@ -98,7 +98,13 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
 void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
-  SolvableScene solvable = loadSolvable(o.scene, o.flags);
+  // The solvers are compared on one mesh against its dense direct solution: adaptive
+  // refinement would only multiply the elements (up to 8 000 fit), so it is off unless asked;
+  // element values are compared, so no direct light is cast to the vertices.
+  SolverBlock flags = o.flags;
+  if (!flags.adaptive) flags.adaptive = false;
+  flags.vertexDirect = false;
+  SolvableScene solvable = loadSolvable(o.scene, flags);
   const auto& [scene, settings, mesh, direct, adaptive, base] = solvable;
   SolverOptions options = solverOptions(settings);
   // One worker, so that every method's time is single-threaded and comparable.
