@@ -44,7 +44,9 @@ set(bad_cases
   version_two          "version: expected version 1, found the number 2"
   bad_light_type       "lights.0..type: expected \"directional\", \"point\" or \"spot\", found the string \"area\""
   bad_fog_mode         "fog.mode: expected \"linear\", \"exp\" or \"exp2\", found the string \"thick\""
-  bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\"")
+  bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\""
+  bad_contrast         "solver.contrast: expected a number in .1e-6, 1., found the number 5"
+  bad_adaptive         "solver.adaptive: expected true or false, found the string \"yes\"")
 while(bad_cases)
   list(POP_FRONT bad_cases case regex)
   cli_test(bad.${case} 1 "radiosity: error: .*${case}.json: ${regex}" OUT/${case}.ply
@@ -100,3 +102,14 @@ cli_test(bad.solve_reference_mismatch 1 "small.ply: expected a result of the sam
 set_tests_properties(cli.bad.solve_reference_mismatch PROPERTIES DEPENDS cli.solve.small)
 cli_test(convergence.small 0 "Gauss-Seidel" OUT/conv.svg
          convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/conv.svg --csv OUT/conv.csv --hemicube 32)
+
+# Adaptive subdivision: its flags, and their bad values.
+cli_test(solve.adaptive_flags 0 "converged after" OUT/adaptive.ply
+         solve ${DATA}/good_small.json -o OUT/adaptive.ply --adaptive true --min-element-edge 0.05
+         --contrast 0.05 --vertex-direct true)
+cli_test(solve.uniform 0 "converged after" OUT/uniform.ply
+         solve ${DATA}/good_small.json -o OUT/uniform.ply --adaptive false --vertex-direct false)
+cli_test(usage.contrast_range 2 "contrast" OUT/c.ply solve ${DATA}/good_small.json -o OUT/c.ply --contrast 2)
+cli_test(usage.adaptive_not_bool 2 "adaptive" OUT/a.ply solve ${DATA}/good_small.json -o OUT/a.ply --adaptive maybe)
+cli_test(usage.min_edge_negative 2 "min-element-edge" OUT/m.ply
+         solve ${DATA}/good_small.json -o OUT/m.ply --min-element-edge -1)
