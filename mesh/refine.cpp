@@ -73,13 +73,17 @@ class Bisector {
     for (;;) {
       auto h = m_.find_halfedge(a, b);
       if (!h.is_valid()) return;  // split already
-      auto f = m_.face_handle(h).is_valid() ? m_.face_handle(h) : m_.opposite_face_handle(h);
       auto e = m_.edge_handle(h);
-      if (!f.is_valid() || longest(m_, f) == e) {
+      // Both elements beside the edge must have it as their longest, or the split would cut
+      // one across a shorter edge (and break the angle bound).
+      Mesh::FaceHandle shorter;
+      for (auto f : {m_.face_handle(h), m_.opposite_face_handle(h)})
+        if (f.is_valid() && longest(m_, f) != e) shorter = f;
+      if (!shorter.is_valid()) {
         split(e);
         return;
       }
-      bisect(f);
+      bisect(shorter);
     }
   }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Conforming refinement of the patch mesh: longest-edge bisection (Rivara 1984), and the
 // check that a mesh has no T-junctions.
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "mesh/patch_mesh.h"
@@ -24,6 +26,11 @@ int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
 
 /// The longest edge of element e.
 double longestEdge(const PatchMesh& mesh, int e);
+
+/// A key for the edge between vertices a and b, whichever way round.
+inline uint64_t edgeKey(int a, int b) {
+  return uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b));
+}
 
 /// A vertex lying inside an element edge of its own surface side (a T-junction), which a
 /// Gouraud display shows as a crack or a seam.

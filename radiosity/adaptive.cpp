@@ -6,6 +6,7 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "mesh/color.h"
 #include "mesh/error.h"
@@ -22,17 +23,32 @@ double display(double lum, double exposure) {
 }
 
 /// Luminance of the light vertex a receives through samples b does not see.
-double lightOnlyFrom(const VertexLight& a, const VertexLight& b, const std::vector<int>& triangleOf) {
+double lightOnlyFrom(const VertexLight& a, const VertexLight& b, const std::vector<int>& lightOf) {
   double sum = 0;
   for (size_t w = 0; w < a.visible.size(); ++w) {
     uint64_t only = a.visible[w] & ~b.visible[w];
     while (only) {
       const int bit = __builtin_ctzll(only);
       only &= only - 1;
-      sum += a.weight[size_t(triangleOf[w * 64 + size_t(bit)])];
+      sum += a.weight[size_t(lightOf[w * 64 + size_t(bit)])];
     }
   }
   return sum;
+}
+
+/// The mesh quality figures, for the refined mesh (radiosity info prints them).
+void updateMeshStats(PatchMesh& mesh) {
+  mesh.stats.minAngleDeg = 180;
+  mesh.stats.maxEdge = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    const auto c = mesh.corners(e);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 u = c[size_t((k + 1) % 3)] - c[size_t(k)], v = c[size_t((k + 2) % 3)] - c[size_t(k)];
+      const double cosine = glm::dot(u, v) / (glm::length(u) * glm::length(v));
+      mesh.stats.minAngleDeg = std::min(mesh.stats.minAngleDeg, glm::degrees(std::acos(std::clamp(cosine, -1.0, 1.0))));
+      mesh.stats.maxEdge = std::max(mesh.stats.maxEdge, glm::length(u));
+    }
+  }
 }
 
 }  // namespace
@@ -68,10 +84,9 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
   const auto& vertices = light.vertices();
   const TriMesh& m = mesh.mesh;
   RAD_CHECK(vertices.size() == m.n_vertices());
-  std::vector<int> triangleOf(size_t(light.samples() + 63) / 64 * 64, 0);
+  std::vector<int> lightOf(size_t(light.samples() + 63) / 64 * 64, 0);
   for (size_t t = 0; t < light.lights().size(); ++t)
-    for (int j = 0; j < light.lights()[t].count; ++j) triangleOf[size_t(light.lights()[t].first + j)] = int(t);
-  auto edgeKey = [](int a, int b) { return uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b)); };
+    for (int j = 0; j < light.lights()[t].count; ++j) lightOf[size_t(light.lights()[t].first + j)] = int(t);
 
   // The candidates, and the midpoints of their edges not yet known.
   std::vector<int> candidates;
@@ -92,6 +107,7 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
       p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : mesh.normal(e);
       p.rho = mesh.reflectance(e);
       p.inwards = mesh.centroid(e) - p.point;
+      p.size = 0.5 * (m.point(a) - m.point(b)).norm();
       // Where both ends see the same samples, so does the midpoint (a thin occluder seen
       // from neither is the exception this accepts): its light needs no ray.
       if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
@@ -124,7 +140,7 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
         const VertexLight &vi = vertices[size_t(corner[i])], &vj = vertices[size_t(corner[j])];
         if (i == j || vi.visible == vj.visible) continue;
         const double lum = luminance(vi.radiosity);
-        refine = shown(lum) - shown(lum - lightOnlyFrom(vi, vj, triangleOf)) > options.contrast;
+        refine = shown(lum) - shown(lum - lightOnlyFrom(vi, vj, lightOf)) > options.contrast;
       }
     if (refine) out.push_back(e);
   }
@@ -132,9 +148,11 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
 }
 
 AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const AdaptiveOptions& options) {
+  RAD_CHECK(options.minElementEdge > 0);  // without a floor only maxRounds would stop it
   const auto start = std::chrono::steady_clock::now();
   AdaptiveStats stats;
-  stats.elementsBefore = mesh.elementCount();
+  stats.elementsBefore = stats.elementsAfter = mesh.elementCount();
+  if (!light.enabled()) return stats;
   light.update(mesh);
   const DisplayEstimate estimate = estimateDisplay(mesh, light);
   MidpointLight midpoints;
@@ -148,7 +166,7 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
     // Each new vertex is the midpoint of the edge it split, where the light is known.
     std::unordered_map<int, VertexLight> known;
     for (const auto& s : splits) {
-      auto it = midpoints.find(uint64_t(std::min(s.from, s.to)) << 32 | uint64_t(std::max(s.from, s.to)));
+      auto it = midpoints.find(edgeKey(s.from, s.to));
       if (it == midpoints.end()) continue;
       known.emplace(s.vertex, std::move(it->second));
       midpoints.erase(it);
@@ -157,6 +175,7 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
     ++stats.rounds;
   }
   stats.elementsAfter = mesh.elementCount();
+  if (stats.rounds > 0) updateMeshStats(mesh);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
@@ -174,6 +193,20 @@ void addDirectLight(SceneMesh& s, const Scene& scene, const Settings& settings) 
   s.direct = std::make_unique<DirectLight>(s.mesh, scene.diagonal());
   if (!s.direct->enabled()) {
     s.direct.reset();
+    int emitting = 0;
+    for (int p = 0; p < int(s.mesh.patches.size()); ++p) emitting += s.mesh.emits(p);
+    if (settings.adaptive && emitting > kMaxRayEmitterPatches) {
+      // No rays, no refinement: grade the contact lines beforehand, as without it.
+      Settings graded = settings;
+      graded.adaptive = false;
+      if (graded.mesh().contactGrading != settings.mesh().contactGrading)
+        s.mesh = buildPatchMesh(scene, graded.mesh());
+      s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
+      s.mesh.warnings.push_back("adaptive subdivision off: " + std::to_string(emitting) +
+                                " emitting patches, more than the " +
+                                std::to_string(kMaxRayEmitterPatches) +
+                                " rays are cast to; the hemicubes' direct light is shown");
+    }
     return;
   }
   if (settings.adaptive) {

@@ -50,6 +50,11 @@ std::vector<glm::dvec3> patchOutline(const PatchMesh& mesh, const Patch& patch) 
 /// receiver along its normal and towards its own elements (a vertex at the foot of a wall
 /// must not start its rays inside the wall's plane), and off the emitter along its normal.
 constexpr double kRayOffset = 1e-5;
+/// Near small elements the receiver's offset shrinks to this share of their size, but not
+/// below kMinRayOffset of the scene size (single-precision rays in coordinates normalised to
+/// the scene: about 17 units in the last place).
+constexpr double kRayOffsetOfElement = 1e-3;
+constexpr double kMinRayOffset = 1e-6;
 
 }  // namespace
 
@@ -98,7 +103,14 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
   }
   enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterPatches;
   if (!enabled_) return;
+  // Many glowing surfaces share one budget of samples (rays per vertex).
+  const int sides = int(std::count_if(sideArea.begin(), sideArea.end(), [](double a) { return a > 0; }));
+  samplesPerEmitter = std::max(1, std::min(samplesPerEmitter, kMaxLightSamples / sides));
   const double offset = kRayOffset * sceneSize;
+  auto addSample = [&](const glm::dvec3& at, const glm::dvec3& normal) {
+    onLight_.push_back(at);
+    points_.push_back(at + normal * offset);
+  };
   for (int p : emitters) {
     const Patch& patch = mesh.patches[p];
     const double share = patch.area / sideArea[size_t(patch.surface * 2 + patch.side)];
@@ -106,23 +118,29 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
     LightPolygon light;
     light.normal = patch.normal;
     light.emission = mesh.emission(patch.elements[0]);
-    light.first = int(points_.size());
-    for (const ShooterSample& s : patchSamples(mesh, p, count)) {
-      onLight_.push_back(s.point);
-      points_.push_back(s.point + light.normal * offset);
-    }
-    light.count = int(points_.size()) - light.first;
-    std::vector<glm::dvec3> outline = patchOutline(mesh, patch);
-    if (!outline.empty()) {
-      light.outline = std::move(outline);
+    light.outline = patchOutline(mesh, patch);
+    if (!light.outline.empty()) {
+      light.first = int(points_.size());
+      for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
+      light.count = int(points_.size()) - light.first;
       lights_.push_back(std::move(light));
       continue;
     }
-    // No simple outline: each element is a light, sharing the patch's samples by position.
+    // No simple outline (a patch round a hole): each element is a light with its own share of
+    // the samples, the centroids of an m×m split of the triangle.
     for (int e : patch.elements) {
       LightPolygon part = light;
       const auto c = mesh.corners(e);
       part.outline.assign(c.begin(), c.end());
+      part.first = int(points_.size());
+      const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
+      const glm::dvec3 u = (c[1] - c[0]) / double(m), v = (c[2] - c[0]) / double(m);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; i + j < m; ++j) {
+          addSample(c[0] + u * (i + 1.0 / 3) + v * (j + 1.0 / 3), part.normal);
+          if (i + j < m - 1) addSample(c[0] + u * (i + 2.0 / 3) + v * (j + 2.0 / 3), part.normal);
+        }
+      part.count = int(points_.size()) - part.first;
       lights_.push_back(std::move(part));
     }
   }
@@ -172,6 +190,10 @@ DirectLight::Probe DirectLight::probeAt(const PatchMesh& mesh, TriMesh::VertexHa
     if (faces++ == 0) probe.rho = mesh.reflectance(f.idx());
     probe.inwards += mesh.centroid(f.idx());
   }
+  for (auto w : mesh.mesh.vv_range(v)) {
+    const double edge = (mesh.mesh.point(w) - mesh.mesh.point(v)).norm();
+    probe.size = probe.size > 0 ? std::min(probe.size, edge) : edge;
+  }
   if (faces) probe.inwards = probe.inwards / double(faces) - probe.point;
   return probe;
 }
@@ -185,7 +207,9 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   // Everything is evaluated a little off the surface and inwards: the light a point on a
   // surface's edge shows is the limit from inside the surface (a floor point at the foot of a
   // glowing wall sees half its hemisphere filled by it, not the wall edge-on).
-  const double offset = kRayOffset * sceneSize_;
+  double offset = kRayOffset * sceneSize_;
+  if (probe.size > 0)
+    offset = std::clamp(kRayOffsetOfElement * probe.size, kMinRayOffset * sceneSize_, offset);
   const double inwards = glm::length(probe.inwards);
   const glm::dvec3 p = probe.point + n * offset +
                        (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));

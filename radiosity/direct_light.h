@@ -13,9 +13,13 @@
 
 namespace rad {
 
-/// Sample points per emitting surface side: each emitting patch gets its share by area (at
-/// least one), spread over it in strata of equal area (patchSamples).
+/// Sample points per emitting surface side (at most kMaxLightSamples over all): each emitting
+/// patch gets its share by area (at least one), spread over it in strata of equal area
+/// (patchSamples).
 constexpr int kDefaultLightSamples = 512;
+/// At most this many samples over all emitting surface sides (rays per vertex): with many
+/// glowing surfaces each gets fewer.
+constexpr int kMaxLightSamples = 4096;
 /// Above this many emitting patches, direct light by rays costs more than it brings (a scene
 /// where most surfaces glow has no sharp shadows): the hemicubes' values are shown instead.
 constexpr int kMaxRayEmitterPatches = 256;
@@ -65,6 +69,9 @@ class DirectLight {
   /// reflectance `rho`; rays start a little off it, towards `inwards` (its own elements).
   struct Probe {
     glm::dvec3 point{0.0}, normal{0.0}, rho{0.0}, inwards{0.0};
+    /// The size of the elements round the point (0: unknown): rays start closer to the
+    /// surface where elements are small, so that they do not start past small occluders.
+    double size = 0;
     /// If set, the samples visible from the point are taken to be these, and no ray is cast
     /// (between two vertices that see the same samples).
     const std::vector<uint64_t>* visible = nullptr;

@@ -267,9 +267,12 @@ double ProgressiveSolver::unshotFraction() const {
   return emittedLuminance_ > 0 ? unshotLuminance_ / emittedLuminance_ : 0.0;
 }
 
-glm::dvec3 ProgressiveSolver::ambient() const {
+glm::dvec3 ProgressiveSolver::ambient(bool withoutEmission) const {
+  glm::dvec3 unshot = ledger_.unshot;
+  if (withoutEmission)
+    for (size_t e = 0; e < dE_.size(); ++e) unshot -= area_[e] * dE_[e];
   glm::dvec3 reflectionFactor = 1.0 / (1.0 - rhoMean_);
-  return reflectionFactor * ledger_.unshot / totalArea_;
+  return reflectionFactor * unshot / totalArea_;
 }
 
 int ProgressiveSolver::pickShooter() const {

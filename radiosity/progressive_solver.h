@@ -129,8 +129,10 @@ class ProgressiveSolver {
   /// element: the display replaces it with direct light computed at the vertices by rays.
   const std::vector<glm::dvec3>& direct() const { return direct_; }
   /// The ambient term of Cohen et al. 1988: (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄), ρ̄ the area-weighted
-  /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient.
-  glm::dvec3 ambient() const;
+  /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient. withoutEmission: leave out
+  /// the emission not yet shot (when the display takes direct light from rays, which already
+  /// show its first bounce).
+  glm::dvec3 ambient(bool withoutEmission = false) const;
   /// Patches that never shot so far (nothing, or too little, to send).
   int patchesNeverShot() const;
   /// Whether one channel is solved and copied to the others (a grey scene).

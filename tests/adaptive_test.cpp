@@ -120,6 +120,8 @@ TEST(AdaptiveTest, FurnaceNeedsNoRefinement) {
   const SceneMesh many = meshScene(furnace, resolveSettings(furnace, {}));
   EXPECT_EQ(many.adaptive.elementsAfter, many.adaptive.elementsBefore);
   EXPECT_EQ(many.direct, nullptr);
+  ASSERT_FALSE(many.mesh.warnings.empty());  // and the user is told
+  EXPECT_NE(many.mesh.warnings.back().find("adaptive subdivision off"), std::string::npos);
   SolverBlock flags;
   flags.maxPatchEdge = 0.5;
   const SceneMesh few = meshScene(furnace, resolveSettings(furnace, flags));
@@ -200,6 +202,8 @@ TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
       }
       std::printf("axis %d, side %+.0f: umbra edge shown at %.2f, exact %.2f; penumbra edge shown at "
                   "%.2f, exact %.2f\n", axis, sign, shownUmbra, exactUmbra, shownOuter, exactOuter);
+      // The exact 2 % crossing itself: 10 (the umbra's edge) plus the few millimetres over
+      // which the first 2 % of the light comes into view.
       EXPECT_NEAR(exactUmbra, 10, 3);
       EXPECT_NEAR(shownUmbra, exactUmbra, kMin);
       EXPECT_NEAR(shownOuter, exactOuter, kMin);

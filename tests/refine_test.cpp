@@ -34,13 +34,18 @@ double smallestAngle(const PatchMesh& m) {
 }
 
 /// Every element listed, and those their propagation paths reach, bisected three times over;
-/// the mesh stays conforming, each element keeps its base element's attributes, areas add
-/// up, and angles stay above half the smallest before (Rivara's bound).
-TEST(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
-  Scene scene = loadScene(kScenes + "cornell.json");
-  PatchMesh m = buildPatchMesh(scene, {55, 165, true, 1});
+/// the mesh stays conforming (within and across surfaces), each element keeps its base
+/// element's attributes, areas add up, and angles stay above half the smallest before
+/// (Rivara's bound). The contacts scene has contact lines across surfaces (a board resting on
+/// the floor and the wall), where edges split on one surface are split inside another.
+class RefineTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
+  Scene scene = loadScene(kScenes + GetParam());
+  const double edge = scene.diagonal() / 20;
+  PatchMesh m = buildPatchMesh(scene, {edge, 3 * edge, true, 1});
   const PatchMesh before = m;
-  ASSERT_TRUE(findTJunctions(m).empty());
+  ASSERT_TRUE(findTJunctions(m, 1e-7, true).empty());
   const double angleBefore = smallestAngle(m);
   for (int round = 0; round < 3; ++round) {
     std::vector<int> some;
@@ -48,7 +53,7 @@ TEST(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
     const int added = bisectElements(m, some);
     EXPECT_GE(added, int(some.size()));
   }
-  EXPECT_TRUE(findTJunctions(m).empty());
+  EXPECT_TRUE(findTJunctions(m, 1e-7, true).empty());
   EXPECT_GE(smallestAngle(m), angleBefore / 2 - 1e-9);
   std::vector<double> patchArea(m.patches.size(), 0.0);
   for (int e = 0; e < m.elementCount(); ++e) {
@@ -79,9 +84,11 @@ TEST(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
   EXPECT_EQ(listed, m.elementCount());
 }
 
+INSTANTIATE_TEST_SUITE_P(Scenes, RefineTest, ::testing::Values("cornell.json", "contacts.json"));
+
 /// Two triangles of one surface on either side of a line, one of them split at the line's
 /// midpoint without the other: the midpoint is a T-junction. Split conformingly, none.
-TEST(RefineTest, FindsTJunctions) {
+TEST(TJunctionTest, FindsTJunctions) {
   auto square = [](bool conforming) {
     PatchMesh m;
     m.surfaces.resize(1);

@@ -484,7 +484,7 @@ void furnace(bool refine) {
       bisectElements(mesh, some);
     }
     ASSERT_GT(mesh.elementCount(), 2 * 6 * kGrid * kGrid * 2);
-    ASSERT_TRUE(findTJunctions(mesh).empty());
+    ASSERT_TRUE(findTJunctions(mesh, 1e-7, true).empty());
   }
 
   SolverOptions options;

@@ -25,7 +25,7 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
                  "true or false (solver.adaptive; default true)");
   app.add_option("--min-element-edge", flags.minElementEdge,
                  "Adaptive refinement stops at elements this small, scene units "
-                 "(solver.min_element_edge; default: element edge / 8)")
+                 "(solver.min_element_edge; default: element edge / 4)")
       ->check(CLI::PositiveNumber);
   app.add_option("--contrast", flags.contrast,
                  "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
@@ -79,7 +79,11 @@ SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter
       throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
                        "every emitting surface enclosed by others and cut away");
   }
+  const size_t printed = meshed.mesh.warnings.size();
   addDirectLight(meshed, s.scene, s.settings);
+  // What refinement adds (a mesh meshed again has the same repairs first).
+  printWarnings({meshed.mesh.warnings.begin() + long(std::min(printed, meshed.mesh.warnings.size())),
+                 meshed.mesh.warnings.end()});
   s.mesh = std::move(meshed.mesh);
   s.direct = std::move(meshed.direct);
   s.adaptive = meshed.adaptive;

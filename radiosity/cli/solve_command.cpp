@@ -95,7 +95,9 @@ void runSolve(const SolveOptions& o) {
   // Bake: unconverged solutions show the ambient term in their display colours. Overshooting
   // can leave a slightly negative channel mid-solve; the result never carries one.
   bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
-  glm::dvec3 ambient = converged ? glm::dvec3(0.0) : glm::max(solver.ambient(), glm::dvec3(0.0));
+  // With direct light from rays at the vertices, the emission not yet shot is already shown.
+  glm::dvec3 ambient = converged ? glm::dvec3(0.0)
+                                 : glm::max(solver.ambient(bool(direct)), glm::dvec3(0.0));
   std::vector<glm::dvec3> B = solver.radiosity();
   int clamped = 0;
   for (auto& b : B)
