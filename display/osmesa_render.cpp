@@ -22,6 +22,28 @@ namespace {
 /// Display colour of wireframe edges.
 constexpr GLubyte kWireColour[3] = {kWireByte, kWireByte, kWireByte};
 
+/// Pushes the filled triangles back a little so that the wireframe drawn over them passes
+/// the depth test.
+void pushFilledBack() {
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 1.0f);
+}
+
+/// Draws the element edges of the `count` vertices' triangles over the picture in the wire
+/// colour: no offset, lighting, fog, or per-vertex colours and normals.
+void drawWireOverlay(GLsizei count) {
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_COLOR_MATERIAL);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_FOG);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_COLOR_ARRAY);
+  glColor3ubv(kWireColour);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  glDepthFunc(GL_LEQUAL);
+  glDrawArrays(GL_TRIANGLES, 0, count);
+}
+
 struct ContextDeleter {
   void operator()(osmesa_context* c) const { OSMesaDestroyContext(c); }
 };
@@ -96,19 +118,9 @@ void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const
   glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
   glColorPointer(4, GL_FLOAT, 0, colours.data());
   const GLsizei count = GLsizei(list.positions.size());
-  if (wireframe) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 1.0f);
-  }
+  if (wireframe) pushFilledBack();
   glDrawArrays(GL_TRIANGLES, 0, count);
-  if (wireframe) {
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDisableClientState(GL_COLOR_ARRAY);
-    glColor3ubv(kWireColour);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDepthFunc(GL_LEQUAL);
-    glDrawArrays(GL_TRIANGLES, 0, count);
-  }
+  if (wireframe) drawWireOverlay(count);
   finish();
 }
 
@@ -188,10 +200,7 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
   glEnableClientState(GL_NORMAL_ARRAY);
   glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
   glNormalPointer(GL_FLOAT, 0, list.normals.data());
-  if (wireframe) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 1.0f);
-  }
+  if (wireframe) pushFilledBack();
   for (const LocalBatch& b : list.batches) {
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(b.ambient));
     glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(b.diffuse));
@@ -200,16 +209,7 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
     glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
     glDrawArrays(GL_TRIANGLES, b.first, b.count);
   }
-  if (wireframe) {
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDisable(GL_LIGHTING);
-    glDisable(GL_FOG);
-    glDisableClientState(GL_NORMAL_ARRAY);
-    glColor3ubv(kWireColour);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDepthFunc(GL_LEQUAL);
-    glDrawArrays(GL_TRIANGLES, 0, GLsizei(list.positions.size()));
-  }
+  if (wireframe) drawWireOverlay(GLsizei(list.positions.size()));
   finish();
   rgb.resize(pixels * 3);
   for (size_t p = 0; p < pixels; ++p)
@@ -241,26 +241,13 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
   glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
   glNormalPointer(GL_FLOAT, 0, list.normals.data());
   glColorPointer(4, GL_FLOAT, 0, list.colours.data());
-  if (wireframe) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 1.0f);
-  }
+  if (wireframe) pushFilledBack();
   for (const LocalBatch& b : list.batches) {
     glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
     glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
     glDrawArrays(GL_TRIANGLES, b.first, b.count);
   }
-  if (wireframe) {
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDisable(GL_COLOR_MATERIAL);
-    glDisable(GL_LIGHTING);
-    glDisableClientState(GL_NORMAL_ARRAY);
-    glDisableClientState(GL_COLOR_ARRAY);
-    glColor3ubv(kWireColour);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDepthFunc(GL_LEQUAL);
-    glDrawArrays(GL_TRIANGLES, 0, GLsizei(list.positions.size()));
-  }
+  if (wireframe) drawWireOverlay(GLsizei(list.positions.size()));
   finish();
   rgb.resize(pixels * 3);
   for (size_t p = 0; p < pixels; ++p)

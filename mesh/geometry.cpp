@@ -45,6 +45,24 @@ double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   return 0.5 * glm::length(glm::cross(b - a, c - a));
 }
 
+double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 u = b - a, v = c - a;
+  return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI;
+}
+
+std::vector<std::array<glm::dvec3, 3>> congruentSplit(const std::array<glm::dvec3, 3>& t, int m) {
+  std::vector<std::array<glm::dvec3, 3>> out;
+  out.reserve(size_t(m) * size_t(m));
+  const glm::dvec3 u = (t[1] - t[0]) / double(m), v = (t[2] - t[0]) / double(m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; i + j < m; ++j) {
+      const glm::dvec3 p = t[0] + double(i) * u + double(j) * v;
+      out.push_back({p, p + u, p + v});
+      if (i + j + 1 < m) out.push_back({p + u, p + u + v, p + v});
+    }
+  return out;
+}
+
 double polygonArea(const Polygon& polygon) {
   glm::dvec3 n = newellNormal(polygon.outer);
   double len = glm::length(n);

@@ -1,5 +1,8 @@
 #pragma once
 // Small geometric helpers on GLM double vectors: polygon normals, areas, plane frames.
+#include <array>
+#include <vector>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -29,6 +32,13 @@ PlaneFrame planeFrame(const Ring& ring);
 
 /// Area of a triangle in 3D.
 double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+/// The angle at a of triangle a, b, c, in degrees.
+double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+/// Triangle t cut into m² congruent triangles (each edge into m equal pieces), with t's
+/// orientation.
+std::vector<std::array<glm::dvec3, 3>> congruentSplit(const std::array<glm::dvec3, 3>& t, int m);
 
 /// The area of a planar polygon minus its holes (projected onto its best-fit plane).
 double polygonArea(const Polygon& polygon);

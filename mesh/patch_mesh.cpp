@@ -766,11 +766,6 @@ void cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pi
   wheres.resize(kept);
 }
 
-double angleDeg(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  glm::dvec3 u = b - a, v = c - a;
-  return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI;
-}
-
 }  // namespace
 
 PatchMesh::PatchMesh() {

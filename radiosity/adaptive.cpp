@@ -6,10 +6,10 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include "mesh/color.h"
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "mesh/refine.h"
 #include "mesh/settings.h"
 #include "radiosity/result.h"
@@ -42,11 +42,10 @@ void updateMeshStats(PatchMesh& mesh) {
   mesh.stats.maxEdge = 0;
   for (int e = 0; e < mesh.elementCount(); ++e) {
     const auto c = mesh.corners(e);
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 u = c[size_t((k + 1) % 3)] - c[size_t(k)], v = c[size_t((k + 2) % 3)] - c[size_t(k)];
-      const double cosine = glm::dot(u, v) / (glm::length(u) * glm::length(v));
-      mesh.stats.minAngleDeg = std::min(mesh.stats.minAngleDeg, glm::degrees(std::acos(std::clamp(cosine, -1.0, 1.0))));
-      mesh.stats.maxEdge = std::max(mesh.stats.maxEdge, glm::length(u));
+    for (size_t k = 0; k < 3; ++k) {
+      const glm::dvec3 &a = c[k], &b = c[(k + 1) % 3], &d = c[(k + 2) % 3];
+      mesh.stats.minAngleDeg = std::min(mesh.stats.minAngleDeg, angleDeg(a, b, d));
+      mesh.stats.maxEdge = std::max(mesh.stats.maxEdge, glm::length(b - a));
     }
   }
 }

@@ -12,6 +12,7 @@
 
 #include "mesh/color.h"
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/progressive_solver.h"
 
@@ -134,12 +135,7 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
       part.outline.assign(c.begin(), c.end());
       part.first = int(points_.size());
       const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
-      const glm::dvec3 u = (c[1] - c[0]) / double(m), v = (c[2] - c[0]) / double(m);
-      for (int i = 0; i < m; ++i)
-        for (int j = 0; i + j < m; ++j) {
-          addSample(c[0] + u * (i + 1.0 / 3) + v * (j + 1.0 / 3), part.normal);
-          if (i + j < m - 1) addSample(c[0] + u * (i + 2.0 / 3) + v * (j + 2.0 / 3), part.normal);
-        }
+      for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, part.normal);
       part.count = int(points_.size()) - part.first;
       lights_.push_back(std::move(part));
     }
@@ -264,12 +260,6 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
   work();
   for (auto& t : threads) t.join();
   rays_ += rays;
-  return out;
-}
-
-std::vector<glm::dvec3> DirectLight::radiosityAt(const std::vector<Probe>& probes) {
-  std::vector<glm::dvec3> out;
-  for (auto& light : lightAt(probes)) out.push_back(light.radiosity);
   return out;
 }
 

@@ -78,7 +78,6 @@ class DirectLight {
   };
   /// The direct light at each probe, on all workers.
   std::vector<VertexLight> lightAt(const std::vector<Probe>& probes);
-  std::vector<glm::dvec3> radiosityAt(const std::vector<Probe>& probes);
 
  private:
   VertexLight compute(const Probe& probe, long& raysCast) const;

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
@@ -26,17 +27,9 @@ struct Part {
 
 /// Cuts triangle t into m² congruent triangles (each edge into m equal pieces).
 void subdivide(int element, const std::array<glm::dvec3, 3>& t, int m, std::vector<Part>& out) {
-  const glm::dvec3 u = (t[1] - t[0]) / double(m), v = (t[2] - t[0]) / double(m);
-  const double area = 0.5 * glm::length(glm::cross(u, v)), share = 1.0 / double(m * m);
-  auto add = [&](const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& r) {
-    out.push_back({element, share, area, (p + q + r) / 3.0, {p, q, r}});
-  };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; i + j < m; ++j) {
-      glm::dvec3 p = t[0] + double(i) * u + double(j) * v;
-      add(p, p + u, p + v);
-      if (i + j + 1 < m) add(p + u, p + u + v, p + v);
-    }
+  const double area = triangleArea(t[0], t[1], t[2]) / double(m * m), share = 1.0 / double(m * m);
+  for (const auto& c : congruentSplit(t, m))
+    out.push_back({element, share, area, (c[0] + c[1] + c[2]) / 3.0, c});
 }
 
 /// Splits `parts` into `strata` groups of about equal area: ordered along the longest axis of

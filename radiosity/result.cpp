@@ -153,6 +153,28 @@ std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<gl
   return out;
 }
 
+std::optional<glm::dvec3> gouraudAt(const PatchMesh& m, const std::vector<int>& elements,
+                                    const std::vector<glm::dvec3>& vertexValue, const glm::dvec3& x) {
+  for (int e : elements) {
+    const auto c = m.corners(e);
+    const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const double twice = glm::dot(n, n), size = std::sqrt(std::sqrt(twice));  // |n| = 2·area
+    if (!(twice > 0) || std::abs(glm::dot(x - c[0], n)) / std::sqrt(twice) > 1e-6 * size) continue;
+    double w[3];
+    bool inside = true;
+    for (size_t k = 0; k < 3 && inside; ++k) {
+      w[k] = glm::dot(glm::cross(c[(k + 2) % 3] - c[(k + 1) % 3], x - c[(k + 1) % 3]), n) / twice;
+      inside = w[k] >= -1e-12;
+    }
+    if (!inside) continue;
+    glm::dvec3 value(0.0);
+    int k = 0;
+    for (auto v : m.mesh.fv_range(TriMesh::FaceHandle(e))) value += w[k++] * vertexValue[size_t(v.idx())];
+    return value;
+  }
+  return std::nullopt;
+}
+
 double autoExposure(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
   std::vector<std::pair<double, double>> lumArea;  // (luminance, area)
   double total = 0;

@@ -1,6 +1,7 @@
 #pragma once
 // Baking a solution into the result mesh (DESIGN.md, "Result mesh"): vertex radiosities,
 // display colours and the exposure rule.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,12 @@ struct VertexDirect {
 /// mesh's vertices, and interpolated linearly inside each base element (substructuring).
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                                         const VertexDirect* direct);
+
+/// The value Gouraud shading shows at point x: the vertex values of the element among
+/// `elements` that contains x (within its plane's tolerance of 1e-6 of its size), interpolated
+/// barycentrically; nullopt when none does.
+std::optional<glm::dvec3> gouraudAt(const PatchMesh& mesh, const std::vector<int>& elements,
+                                    const std::vector<glm::dvec3>& vertexValue, const glm::dvec3& x);
 
 /// The share of non-emitting area at or below the exposure's reference luminance.
 constexpr double kExposurePercentile = 0.95;

@@ -72,28 +72,15 @@ double visibleLightFactor(const Scene& scene, const glm::dvec3& x, bool occluded
   return F;
 }
 
-/// Gouraud value of the floor at x: the floor element containing x, its vertex radiosities
-/// interpolated (what the viewer draws).
+/// Gouraud value of the floor at x (what the viewer draws), green channel.
 double floorValue(const PatchMesh& mesh, int floor, const std::vector<glm::dvec3>& vertexB,
                   const glm::dvec3& x) {
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    if (mesh.surface(e) != floor) continue;
-    auto c = mesh.corners(e);
-    auto area = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& p) {
-      return (b.z - a.z) * (p.x - a.x) - (b.x - a.x) * (p.z - a.z);  // y of (p − a)×(b − a)
-    };
-    double total = area(c[0], c[1], c[2]);
-    double w0 = area(c[1], c[2], x) / total, w1 = area(c[2], c[0], x) / total, w2 = 1 - w0 - w1;
-    if (w0 < -1e-12 || w1 < -1e-12 || w2 < -1e-12) continue;
-    int k = 0;
-    double value = 0;
-    const double w[3] = {w0, w1, w2};
-    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e)))
-      value += w[k++] * vertexB[size_t(v.idx())].y;
-    return value;
-  }
-  ADD_FAILURE() << "no floor element at " << x.x << " " << x.z;
-  return 0;
+  std::vector<int> elements;
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (mesh.surface(e) == floor) elements.push_back(e);
+  const auto value = gouraudAt(mesh, elements, vertexB, x);
+  if (!value) ADD_FAILURE() << "no floor element at " << x.x << " " << x.z;
+  return value ? value->y : 0.0;
 }
 
 /// Errors at one distance from the blocks: relative, over the points the blocks leave at

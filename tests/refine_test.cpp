@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
 #include "mesh/geometry.h"
@@ -18,17 +17,12 @@ const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
 /// Bisection halves areas exactly; geometry agrees to round-off.
 constexpr double kAreaTolerance = 1e-9;
 
-/// The angle at a, degrees.
-double angleAt(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(b - a), glm::normalize(c - a)), -1.0, 1.0)));
-}
-
 double smallestAngle(const PatchMesh& m) {
   double least = 180;
   for (int e = 0; e < m.elementCount(); ++e) {
     auto c = m.corners(e);
-    least = std::min({least, angleAt(c[0], c[1], c[2]), angleAt(c[1], c[2], c[0]),
-                      angleAt(c[2], c[0], c[1])});
+    least = std::min({least, angleDeg(c[0], c[1], c[2]), angleDeg(c[1], c[2], c[0]),
+                      angleDeg(c[2], c[0], c[1])});
   }
   return least;
 }

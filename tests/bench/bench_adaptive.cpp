@@ -78,28 +78,11 @@ Solved solve(const Scene& scene, const Settings& settings) {
   return s;
 }
 
-/// The value Gouraud shading shows at x on `surface` (front side): barycentric interpolation
-/// in the element containing it. NaN when no element does.
+/// The luminance Gouraud shading shows at x (NaN where no element of `elements` has it).
 double shownAt(const PatchMesh& mesh, const std::vector<int>& elements,
                const std::vector<glm::dvec3>& vertexValue, const glm::dvec3& x) {
-  for (int e : elements) {
-    const auto c = mesh.corners(e);
-    const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-    const double area2 = glm::dot(n, n);
-    if (!(area2 > 0)) continue;
-    double w[3];
-    bool inside = true;
-    for (int k = 0; k < 3 && inside; ++k) {
-      w[k] = glm::dot(glm::cross(c[(k + 2) % 3] - c[(k + 1) % 3], x - c[(k + 1) % 3]), n) / area2;
-      inside = w[k] >= -1e-9;
-    }
-    if (!inside || std::abs(glm::dot(x - c[0], n)) > 1e-6 * std::sqrt(area2) * 100) continue;
-    double value = 0;
-    int k = 0;
-    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) value += w[k++] * luminance(vertexValue[size_t(v.idx())]);
-    return value;
-  }
-  return NAN;
+  const auto value = gouraudAt(mesh, elements, vertexValue, x);
+  return value ? luminance(*value) : NAN;
 }
 
 std::vector<std::vector<int>> frontElementsBySurface(const PatchMesh& mesh, size_t surfaces) {
@@ -171,14 +154,14 @@ int main(int argc, char** argv) {
       batch.push_back(p);
       probes.push_back({p.x, p.normal, p.rho, refMesh.centroid(e) - p.x});
     }
-    const auto direct = exact.radiosityAt(probes);
+    const auto direct = exact.lightAt(probes);
     for (size_t k = 0; k < batch.size(); ++k) {
       double open = 0;
       for (const auto& t : exact.lights())
         if (glm::dot(t.normal, batch[k].x - t.outline[0]) > 0)
           open += luminance(batch[k].rho * t.emission) *
                   pointPolygonFormFactor(batch[k].x, batch[k].normal, t.outline);
-      batch[k].direct = luminance(direct[k]);
+      batch[k].direct = luminance(direct[k].radiosity);
       if (open > 0 && batch[k].direct > kPenumbraLow * open && batch[k].direct < kPenumbraHigh * open &&
           int(points.size()) < wanted)
         points.push_back(batch[k]);
