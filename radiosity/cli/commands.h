@@ -31,6 +31,7 @@ Command addMeshCommand(CLI::App& app);
 Command addFormFactorsCommand(CLI::App& app);
 Command addSolveCommand(CLI::App& app);
 Command addConvergenceCommand(CLI::App& app);
+Command addReferenceCommand(CLI::App& app);
 
 /// A scene loaded, checked to have an emitter, its settings resolved and meshed (warnings
 /// printed): what every solving command starts from.

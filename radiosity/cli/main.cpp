@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
                                              rad::cli::addInfoCommand(app),
                                              rad::cli::addMeshCommand(app),
                                              rad::cli::addFormFactorsCommand(app),
-                                             rad::cli::addConvergenceCommand(app)};
+                                             rad::cli::addConvergenceCommand(app),
+                                             rad::cli::addReferenceCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

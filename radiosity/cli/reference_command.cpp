@@ -1,0 +1,150 @@
+// radiosity reference SCENE -o REFERENCE.csv: radiosity at surface points by path tracing,
+// independent of the hemicube solver, to measure the solver's true error against.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <unistd.h>
+
+#include "mesh/error.h"
+#include "mesh/output_file.h"
+#include "mesh/reference_points.h"
+#include "radiosity/cli/commands.h"
+#include "radiosity/pathtrace/path_tracer.h"
+
+namespace rad::cli {
+namespace {
+
+/// A point of --points must lie this close (share of the scene's size) to a surface.
+constexpr double kPointTolerance = 1e-3;
+constexpr int kDefaultCount = 300;
+
+struct ReferenceOptions {
+  std::string scene, output, points;
+  int count = kDefaultCount;
+  long paths = 0, minPaths = pathtrace::kDefaultMinPaths, maxPaths = pathtrace::kDefaultMaxPaths;
+  double relativeError = 0.01;
+  unsigned seed = 1;
+};
+
+/// Reads `x y z nx ny nz [tag]` lines ('#' starts a comment) and finds each point's surface.
+std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const pathtrace::TraceScene& scene) {
+  std::ifstream in(path);
+  if (!in) throw inputError(path, "a readable points file", "none could be opened");
+  std::vector<pathtrace::SurfacePoint> out;
+  std::string line;
+  for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string first;
+    if (!(words >> first)) continue;
+    const std::string where = path + ": line " + std::to_string(lineNo);
+    words.seekg(0);
+    double v[6];
+    for (double& x : v)
+      if (!(words >> x) || !std::isfinite(x)) throw inputError(where, "x y z nx ny nz [tag], six finite numbers", "'" + line + "'");
+    pathtrace::SurfacePoint p{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, -1, "point"};
+    words >> p.tag;
+    if (!(glm::length(p.normal) > 0)) throw inputError(where, "a non-zero normal", "(0, 0, 0)");
+    if (!pathtrace::locatePoint(scene, p, kPointTolerance * scene.size()))
+      throw inputError(where, "a point on a surface, within " + std::to_string(kPointTolerance) +
+                                  " of the scene's size along its normal, on the side the normal faces",
+                       "none there");
+    out.push_back(p);
+  }
+  if (out.empty()) throw inputError(path, "at least one point", "none");
+  return out;
+}
+
+void showProgress(double share) {
+  const int width = 40, filled = int(share * width);
+  std::fprintf(stderr, "\rradiosity reference [%s%s] %3.0f%%", std::string(size_t(filled), '#').c_str(),
+               std::string(size_t(width - filled), '.').c_str(), 100 * share);
+}
+
+void runReference(const ReferenceOptions& o) {
+  checkOutputPath(o.output);
+  Scene scene = loadScene(o.scene);
+  if (!scene.hasEmitter())
+    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission", "none");
+  printWarnings(scene.warnings);
+  const pathtrace::TraceScene traced(scene);
+  std::vector<pathtrace::SurfacePoint> points =
+      o.points.empty() ? pathtrace::placePoints(traced, o.count, o.seed) : readPoints(o.points, traced);
+  if (points.empty()) throw inputError(scene.path, "a non-emitting surface to place points on", "none");
+
+  pathtrace::TraceOptions options;
+  options.seed = o.seed;
+  options.paths = o.paths;
+  options.relativeError = o.relativeError;
+  options.minPaths = o.minPaths;
+  options.maxPaths = std::max(o.maxPaths, o.minPaths);
+  const bool terminal = isatty(STDERR_FILENO);
+  if (terminal) options.progress = showProgress;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pathtrace::PathTracer tracer(traced);
+  const std::vector<pathtrace::PointEstimate> estimates = tracer.estimate(points, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (terminal) std::fprintf(stderr, "\n");
+
+  ReferenceFile file;
+  long capped = 0, fewest = estimates[0].paths, most = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto& e = estimates[i];
+    file.points.push_back({points[i].position, points[i].normal, scene.surfaces[size_t(points[i].surface)].name,
+                           points[i].tag, e.B, e.standardError, e.paths});
+    capped += o.paths <= 0 && e.paths >= options.maxPaths;
+    fewest = std::min(fewest, e.paths);
+    most = std::max(most, e.paths);
+  }
+  char buf[256];
+  file.header.push_back("radiosity reference: path tracing (next-event estimation, cosine-weighted bounces, "
+                        "Russian roulette), independent of the hemicube solver");
+  file.header.push_back("scene: " + scene.path);
+  file.header.push_back("seed: " + std::to_string(o.seed));
+  file.header.push_back("points: " + std::to_string(points.size()) +
+                        (o.points.empty() ? " placed (3/4 by area, 1/4 near edges and contact lines)" : " from " + o.points));
+  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
+  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
+                     o.relativeError, options.minPaths, options.maxPaths, capped);
+  file.header.push_back(buf);
+  std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", tracer.pathsTraced(), fewest, most);
+  file.header.push_back(buf);
+  std::snprintf(buf, sizeof buf, "seconds: %.3f (%.3g paths per second)", seconds, double(tracer.pathsTraced()) / seconds);
+  file.header.push_back(buf);
+  writeReferenceFile(o.output, file);
+  std::fprintf(stderr, "radiosity: %zu points, %ld paths in %.2f s (%.3g per second); wrote %s\n", points.size(),
+               tracer.pathsTraced(), seconds, double(tracer.pathsTraced()) / seconds, o.output.c_str());
+}
+
+}  // namespace
+
+Command addReferenceCommand(CLI::App& app) {
+  auto o = std::make_shared<ReferenceOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "reference", "Radiosity at surface points by Monte Carlo path tracing, independent of the "
+                   "hemicube solver, with standard errors (CSV): the truth to measure solves against");
+  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
+  sub->add_option("-o,--output", o->output, "Reference file (CSV)")->required();
+  auto* points = sub->add_option("--points", o->points, "Points to measure: lines 'x y z nx ny nz [tag]'");
+  sub->add_option("--count", o->count, "Points to place when --points is not given (default 300)")
+      ->check(CLI::Range(1, 10'000'000))
+      ->excludes(points);
+  auto* paths = sub->add_option("--paths", o->paths, "Exactly this many paths per point")->check(CLI::Range(2L, 1L << 40));
+  sub->add_option("--relative-error", o->relativeError,
+                  "Trace each point until its standard error is below this share of B in every channel "
+                  "(default 0.01)")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->excludes(paths);
+  sub->add_option("--min-paths", o->minPaths, "With --relative-error, at least this many paths per point (default 8192)")
+      ->check(CLI::Range(2L, 1L << 40));
+  sub->add_option("--max-paths", o->maxPaths, "With --relative-error, at most this many paths per point (default 2e7)")
+      ->check(CLI::Range(2L, 1L << 40));
+  sub->add_option("--seed", o->seed, "Seed of the random streams (default 1)");
+  return {sub, [o] { runReference(*o); }};
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,135 @@
+#include "radiosity/pathtrace/path_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <thread>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace rad::pathtrace {
+namespace {
+
+/// Rays start this far (normalised units: the scene's size is 1) off their surface.
+constexpr double kRayOffset = 1e-5;
+constexpr double kPi = 3.14159265358979323846;
+
+/// A cosine-weighted direction about unit n (Malley's method), in the orthonormal basis of
+/// Duff et al. 2017.
+glm::dvec3 cosineDirection(const glm::dvec3& n, double u0, double u1) {
+  const double sign = std::copysign(1.0, n.z), a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  const glm::dvec3 s(b, sign + n.y * n.y * a, -n.y);
+  const double r = std::sqrt(u0), phi = 2 * kPi * u1;
+  return r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1 - u0)) * n;
+}
+
+double maxOf(const glm::dvec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+/// The largest relative standard error over the channels whose mean is not zero.
+double relativeError(const glm::dvec3& sum, const glm::dvec3& sumSq, long n) {
+  double worst = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double mean = sum[c] / double(n);
+    if (!(mean > 0)) continue;
+    const double var = std::max(0.0, sumSq[c] / double(n) - mean * mean) / double(n - 1);
+    worst = std::max(worst, std::sqrt(var) / mean);
+  }
+  return worst;
+}
+
+}  // namespace
+
+glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int surface,
+                                 Random& rng) const {
+  const Material& start = scene_.material(surface);
+  glm::dvec3 B = start.emission, T = start.reflectance;  // B = E + ρ·H, H estimated below
+  const double tStart = maxOf(T);
+  if (!(tStart > 0)) return B;
+  glm::dvec3 x = p, nx = n;
+  for (int depth = 1;; ++depth) {
+    // Next-event estimation: light from a point on the emitters, chosen by power.
+    if (scene_.emits()) {
+      const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+      const LightSample s = scene_.sampleLight(u0, u1, u2);
+      const glm::dvec3 d = s.point - x;
+      const double r2 = glm::dot(d, d), cx = glm::dot(nx, d);
+      double cy = -glm::dot(s.normal, d);
+      const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
+      if (s.twoSided) cy = std::abs(cy);
+      if (cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0) &&
+          !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide))
+        B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf));  // E/π · cosθ cosθ' / r² / pdf
+    }
+    // Bounce: a cosine-weighted direction, so that the estimate of H's indirect part is the
+    // radiosity (less emission, which next-event estimation counts) where it lands.
+    const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
+    const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
+    if (hit.triangle < 0) break;  // escaped
+    const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
+    if (!hit.front && !scene_.twoSided(t.surface)) break;  // the back of a one-sided surface absorbs
+    T *= scene_.material(t.surface).reflectance;
+    x = hit.point;
+    nx = hit.front ? t.normal : -t.normal;
+    if (depth >= kRouletteDepth) {
+      // Russian roulette keeps the throughput near where it started.
+      const double survive = std::min(1.0, maxOf(T) / tStart);
+      if (rng.next() >= survive) break;
+      T /= survive;
+    }
+    if (!(maxOf(T) > 0)) break;
+  }
+  return B;
+}
+
+PointEstimate PathTracer::estimate(const SurfacePoint& point, uint64_t stream,
+                                   const TraceOptions& options) const {
+  Random rng = Random::stream(options.seed, stream);
+  const glm::dvec3 p = scene_.toLocal(point.position), n = glm::normalize(point.normal);
+  const long target = options.paths > 0 ? options.paths : std::max(options.maxPaths, 2L);
+  glm::dvec3 sum(0.0), sumSq(0.0);
+  long count = 0;
+  while (count < target) {
+    const long batch = std::min(kPathBatch, target - count);
+    for (long i = 0; i < batch; ++i) {
+      const glm::dvec3 b = tracePath(p, n, point.surface, rng);
+      sum += b;
+      sumSq += b * b;
+    }
+    count += batch;
+    if (options.paths <= 0 && count >= options.minPaths &&
+        relativeError(sum, sumSq, count) <= options.relativeError)
+      break;
+  }
+  traced_ += count;
+  PointEstimate e;
+  e.paths = count;
+  e.B = sum / double(count);
+  for (int c = 0; c < 3; ++c)
+    e.standardError[c] = count > 1 ? std::sqrt(std::max(0.0, sumSq[c] / double(count) - e.B[c] * e.B[c]) / double(count - 1)) : 0.0;
+  return e;
+}
+
+std::vector<PointEstimate> PathTracer::estimate(const std::vector<SurfacePoint>& points,
+                                                const TraceOptions& options) const {
+  std::vector<PointEstimate> out(points.size());
+  std::atomic<size_t> next{0}, done{0};
+  auto work = [&] {
+    for (size_t i; (i = next++) < points.size(); ++done) out[i] = estimate(points[i], i, options);
+  };
+  const int workers = options.workers > 0 ? options.workers : std::max(1, int(std::thread::hardware_concurrency()));
+  std::vector<std::thread> threads;
+  for (int w = 0; w < workers; ++w) threads.emplace_back(work);
+  if (options.progress)
+    while (done < points.size()) {
+      options.progress(double(done) / double(std::max<size_t>(1, points.size())));
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  for (auto& t : threads) t.join();
+  if (options.progress) options.progress(1.0);
+  return out;
+}
+
+}  // namespace rad::pathtrace

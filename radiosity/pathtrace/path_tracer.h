@@ -1,0 +1,87 @@
+#pragma once
+// The independent reference: radiosity at surface points by Monte Carlo path tracing of the
+// diffuse scene (Kajiya 1986; next-event estimation on the emitters chosen by power,
+// cosine-weighted bounces, Russian roulette), with its standard error. The back of a one-sided
+// surface absorbs, as in the solver; a two-sided surface reflects and emits on both sides.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "radiosity/pathtrace/random.h"
+#include "radiosity/pathtrace/trace_scene.h"
+
+namespace rad::pathtrace {
+
+/// A point on one side of a surface, in scene coordinates; `normal` points to that side.
+struct SurfacePoint {
+  glm::dvec3 position{0.0}, normal{0.0};
+  int surface = -1;
+  std::string tag;
+};
+
+/// B at a point: the mean over paths, its standard error and the number of paths.
+struct PointEstimate {
+  glm::dvec3 B{0.0}, standardError{0.0};
+  long paths = 0;
+};
+
+/// Paths per point are traced in batches of this many (the stopping rule is checked between).
+constexpr long kPathBatch = 1024;
+/// With a relative-error target, at least this many paths per point (so that the variance
+/// estimate behind the stopping rule is itself sound).
+constexpr long kDefaultMinPaths = 8192;
+/// ... and at most this many (a point lit only through a crack converges slowly).
+constexpr long kDefaultMaxPaths = 20'000'000;
+/// Bounces before Russian roulette may end a path.
+constexpr int kRouletteDepth = 3;
+
+struct TraceOptions {
+  uint64_t seed = 1;
+  long paths = 0;              ///< > 0: exactly this many paths per point
+  double relativeError = 0.01;  ///< else: stop when every channel's SE / B is below this
+  long minPaths = kDefaultMinPaths, maxPaths = kDefaultMaxPaths;
+  int workers = 0;  ///< threads (0: one per hardware thread)
+  /// Called now and then with the share of points done, from the calling thread.
+  std::function<void(double)> progress;
+};
+
+class PathTracer {
+ public:
+  explicit PathTracer(const TraceScene& scene) : scene_(scene) {}
+
+  /// One path's estimate of B at p (normalised coordinates, unit normal n, on `surface`).
+  glm::dvec3 tracePath(const glm::dvec3& p, const glm::dvec3& n, int surface, Random& rng) const;
+
+  /// B at one point; `stream` picks the random stream (deterministic for seed and stream).
+  PointEstimate estimate(const SurfacePoint& point, uint64_t stream, const TraceOptions& options) const;
+
+  /// B at every point, on all workers; point i uses stream i, so the result does not depend
+  /// on the number of workers.
+  std::vector<PointEstimate> estimate(const std::vector<SurfacePoint>& points,
+                                      const TraceOptions& options) const;
+
+  /// Paths traced so far by this tracer (all calls).
+  long pathsTraced() const { return traced_; }
+
+ private:
+  const TraceScene& scene_;
+  mutable std::atomic<long> traced_{0};
+};
+
+/// Points placed on the non-emitting surfaces (both sides of two-sided ones): three quarters
+/// stratified by area, a quarter within a short distance (log-uniform, 0.1 % to 3 % of the
+/// scene's size) of the surfaces' edges and of the lines where other surfaces' edges lie on
+/// them (contact lines, where errors concentrate). Points inside solids (every direction
+/// ends on the back of a one-sided surface: the floor under a block) are not placed.
+std::vector<SurfacePoint> placePoints(const TraceScene& scene, int count, uint64_t seed);
+
+/// The surface side at a point the user gave (x, normal): the nearest surface within
+/// `tolerance` (scene units) along the normal whose side faces it; the point is moved onto it.
+/// False when there is none.
+bool locatePoint(const TraceScene& scene, SurfacePoint& point, double tolerance);
+
+}  // namespace rad::pathtrace

@@ -1,0 +1,94 @@
+#pragma once
+// The scene as the path tracer sees it: the surfaces' own polygons, triangulated here (ear
+// clipping; holes are left out of every hit and light sample by a point-in-ring test), in
+// coordinates normalised to the scene's box, with rays through Embree. Nothing here comes from
+// the patch mesh or the hemicube solver: the reference shares only the scene loader with them.
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "mesh/scene.h"
+
+namespace rad::pathtrace {
+
+/// One triangle of a surface polygon, in normalised coordinates.
+struct TraceTriangle {
+  glm::dvec3 a{0.0}, b{0.0}, c{0.0};
+  glm::dvec3 normal{0.0};  ///< unit, towards the lit (front) side
+  double area = 0;
+  int surface = -1;
+  int holes = -1;  ///< index of its polygon's holes (TraceScene::HoleSet), -1 for none
+};
+
+/// What a ray hit: the triangle, the point on it and which of its sides faces the ray.
+struct TraceHit {
+  int triangle = -1;
+  glm::dvec3 point{0.0};
+  bool front = false;
+};
+
+/// A point on an emitter, chosen with probability density `pdf` per unit (normalised) area.
+struct LightSample {
+  glm::dvec3 point{0.0}, normal{0.0}, emission{0.0};
+  double pdf = 0;
+  bool twoSided = false;
+};
+
+class TraceScene {
+ public:
+  /// Triangulates every polygon of the scene and builds the ray-casting structure.
+  explicit TraceScene(const Scene& scene);
+  ~TraceScene();
+  TraceScene(const TraceScene&) = delete;
+  TraceScene& operator=(const TraceScene&) = delete;
+
+  /// Scene coordinates to normalised ones ((p − centre) / size) and back.
+  glm::dvec3 toLocal(const glm::dvec3& p) const { return (p - centre_) / size_; }
+  glm::dvec3 toScene(const glm::dvec3& p) const { return p * size_ + centre_; }
+  double size() const { return size_; }
+
+  const Scene& scene() const { return scene_; }
+  const std::vector<TraceTriangle>& triangles() const { return triangles_; }
+  const Material& material(int surface) const;
+  bool twoSided(int surface) const { return scene_.surfaces[size_t(surface)].twoSided; }
+
+  /// The nearest hit along origin + t·direction, 0 < t < tFar (normalised coordinates);
+  /// triangle −1 when nothing is hit.
+  TraceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double tFar) const;
+  /// Whether anything lies on the open segment from `from` to `to`.
+  bool occluded(const glm::dvec3& from, const glm::dvec3& to) const;
+  /// Whether point p (on triangle t's plane) lies in one of its polygon's holes.
+  bool inHole(int t, const glm::dvec3& p) const;
+
+  /// Whether the scene has any emitter.
+  bool emits() const { return !lightCdf_.empty(); }
+  /// A point on the emitters, the triangle chosen by power (area × emission summed over
+  /// channels), uniform on it; u in [0, 1)³. A point in a hole has no emission.
+  LightSample sampleLight(double u0, double u1, double u2) const;
+  /// A uniform point on triangle t for u0, u1 in [0, 1).
+  glm::dvec3 pointOn(int t, double u0, double u1) const;
+
+  /// A polygon's holes in its own plane frame.
+  struct HoleSet {
+    glm::dvec3 origin{0.0}, u{0.0}, v{0.0};
+    std::vector<std::vector<glm::dvec2>> rings;
+  };
+
+ private:
+  void addPolygon(const Polygon& polygon, int surface);
+  void buildRays();
+
+  const Scene& scene_;
+  glm::dvec3 centre_{0.0};
+  double size_ = 1;
+  std::vector<TraceTriangle> triangles_;
+  std::vector<HoleSet> holes_;
+  std::vector<int> lightTriangle_;
+  std::vector<double> lightCdf_;  // cumulative power, normalised to end at 1
+  struct Rays;
+  std::unique_ptr<Rays> rays_;
+};
+
+}  // namespace rad::pathtrace
