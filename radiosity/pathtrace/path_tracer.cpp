@@ -26,6 +26,12 @@ glm::dvec3 cosineDirection(const glm::dvec3& n, double u0, double u1) {
   return r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1 - u0)) * n;
 }
 
+/// Veach's power heuristic: the weight of a sample drawn with density a where b also could have.
+double powerHeuristic(double a, double b) {
+  if (!(a < HUGE_VAL)) return 1;
+  return a * a / (a * a + b * b);
+}
+
 double maxOf(const glm::dvec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 /// The largest relative standard error over the channels whose mean is not zero.
@@ -50,7 +56,10 @@ glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int s
   if (!(tStart > 0)) return B;
   glm::dvec3 x = p, nx = n;
   for (int depth = 1;; ++depth) {
-    // Next-event estimation: light from a point on the emitters, chosen by power.
+    // Light reaches x two ways, each weighted by the power heuristic (Veach 1997): from a
+    // point on the emitters chosen by power (next-event estimation), and where the cosine-
+    // weighted bounce lands on an emitter. Either alone has unbounded variance somewhere: the
+    // first beside an emitter's edge (1/r²), the second for small bright emitters.
     if (scene_.emits()) {
       const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
       const LightSample s = scene_.sampleLight(u0, u1, u2);
@@ -60,17 +69,28 @@ glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int s
       const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
       if (s.twoSided) cy = std::abs(cy);
       if (cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0) &&
-          !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide))
-        B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf));  // E/π · cosθ cosθ' / r² / pdf
+          !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide)) {
+        const double r = std::sqrt(r2);
+        const double pLight = s.pdf * r2 * r / cy, pBounce = cx / (r * kPi);  // per solid angle
+        // E/π · cosθ cosθ' / r² / pdf, cosθ = cx/r, cosθ' = cy/r.
+        B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf)) * powerHeuristic(pLight, pBounce);
+      }
     }
-    // Bounce: a cosine-weighted direction, so that the estimate of H's indirect part is the
-    // radiosity (less emission, which next-event estimation counts) where it lands.
     const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
     const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
     if (hit.triangle < 0) break;  // escaped
     const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
     if (!hit.front && !scene_.twoSided(t.surface)) break;  // the back of a one-sided surface absorbs
-    T *= scene_.material(t.surface).reflectance;
+    const Material& m = scene_.material(t.surface);
+    const double lightPdf = scene_.lightPdf(hit.triangle);
+    if (lightPdf > 0) {
+      // The bounce's estimate of π·L is the exitance E where it lands.
+      const glm::dvec3 d = hit.point - x;
+      const double r2 = glm::dot(d, d), cy = std::abs(glm::dot(t.normal, d)), r = std::sqrt(r2);
+      const double pLight = lightPdf * r2 * r / cy, pBounce = glm::dot(nx, w) / kPi;
+      B += T * m.emission * powerHeuristic(pBounce, pLight);
+    }
+    T *= m.reflectance;
     x = hit.point;
     nx = hit.front ? t.normal : -t.normal;
     if (depth >= kRouletteDepth) {

@@ -137,6 +137,11 @@ TraceScene::TraceScene(const Scene& scene) : scene_(scene) {
     lightCdf_.push_back(total);
   }
   for (double& c : lightCdf_) c /= total;
+  lightPdf_.assign(triangles_.size(), 0.0);
+  for (size_t i = 0; i < lightTriangle_.size(); ++i) {
+    const int t = lightTriangle_[i];
+    lightPdf_[size_t(t)] = (lightCdf_[i] - (i ? lightCdf_[i - 1] : 0.0)) / triangles_[size_t(t)].area;
+  }
   buildRays();
 }
 
@@ -270,8 +275,7 @@ LightSample TraceScene::sampleLight(double u0, double u1, double u2) const {
   s.point = pointOn(t, u1, u2);
   s.normal = tri.normal;
   s.twoSided = twoSided(tri.surface);
-  const double chosen = lightCdf_[i] - (i ? lightCdf_[i - 1] : 0.0);
-  s.pdf = chosen / tri.area;
+  s.pdf = lightPdf_[size_t(t)];
   s.emission = inHole(t, s.point) ? glm::dvec3(0.0) : material(tri.surface).emission;
   return s;
 }

@@ -67,6 +67,9 @@ class TraceScene {
   /// A point on the emitters, the triangle chosen by power (area × emission summed over
   /// channels), uniform on it; u in [0, 1)³. A point in a hole has no emission.
   LightSample sampleLight(double u0, double u1, double u2) const;
+  /// The density per unit (normalised) area with which sampleLight picks points of
+  /// triangle t (0 for a triangle that does not emit).
+  double lightPdf(int t) const { return lightPdf_[size_t(t)]; }
   /// A uniform point on triangle t for u0, u1 in [0, 1).
   glm::dvec3 pointOn(int t, double u0, double u1) const;
 
@@ -87,6 +90,7 @@ class TraceScene {
   std::vector<HoleSet> holes_;
   std::vector<int> lightTriangle_;
   std::vector<double> lightCdf_;  // cumulative power, normalised to end at 1
+  std::vector<double> lightPdf_;  // per triangle
   struct Rays;
   std::unique_ptr<Rays> rays_;
 };

@@ -1,0 +1,219 @@
+// The independent reference (radiosity/pathtrace) against exact answers: the furnace, the direct
+// light of an empty Cornell box by the exact point-to-polygon factor, the generalised furnace,
+// and the honesty of its standard errors (their coverage).
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "mesh/scene.h"
+#include "radiosity/pathtrace/path_tracer.h"
+#include "radiosity/point_polygon.h"
+
+namespace rad::pathtrace {
+namespace {
+
+const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+
+/// An estimate agrees with an exact answer when within this many standard errors.
+constexpr double kSigmas = 3;
+/// Estimates must be sharp enough for the comparison to mean something.
+constexpr double kMaxRelativeSE = 0.02;
+
+/// Every material's reflectance set to rho.
+Scene withReflectance(Scene scene, double rho) {
+  for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
+  return scene;
+}
+
+/// Points on the scene's surfaces at (u, v) of every polygon's corner frame (a, b − a, d − a),
+/// on quads, located on their surface.
+std::vector<SurfacePoint> gridPoints(const TraceScene& traced, const std::vector<double>& uv) {
+  std::vector<SurfacePoint> out;
+  for (const auto& s : traced.scene().surfaces)
+    for (const auto& p : s.polygons) {
+      const auto& r = p.outer;
+      const glm::dvec3 n = glm::normalize(glm::cross(r[1] - r[0], r[3] - r[0]));
+      for (double u : uv)
+        for (double v : uv) {
+          SurfacePoint q{r[0] + u * (r[1] - r[0]) + v * (r[3] - r[0]), n, -1, ""};
+          if (locatePoint(traced, q, 1e-6 * traced.size())) out.push_back(q);
+        }
+    }
+  return out;
+}
+
+/// An estimate beyond this many standard errors is a bias, not chance (p < 1e-4 per point).
+constexpr double kBias = 4;
+
+/// How many channels of e lie beyond kSigmas standard errors of the exact answer; every one
+/// must lie within kBias of it and be sharp enough to mean something.
+int outside(const glm::dvec3& exact, const PointEstimate& e, const glm::dvec3& at) {
+  int count = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double z = std::abs(e.B[c] - exact[c]) / e.standardError[c];
+    EXPECT_LE(z, kBias) << "channel " << c << " at (" << at.x << ", " << at.y << ", " << at.z
+                        << "): B " << e.B[c] << ", exact " << exact[c] << ", SE " << e.standardError[c];
+    if (exact[c] > 0) EXPECT_LT(e.standardError[c] / exact[c], kMaxRelativeSE);
+    count += z > kSigmas;
+  }
+  return count;
+}
+
+void expectWithin(const glm::dvec3& exact, const PointEstimate& e, const glm::dvec3& at) {
+  EXPECT_EQ(outside(exact, e, at), 0) << "B (" << e.B.x << ", " << e.B.y << ", " << e.B.z << "), exact ("
+                                      << exact.x << ", " << exact.y << ", " << exact.z << ")";
+}
+
+/// Furnace (oracles.md §4): a closed cube, every face glowing E = 1 with reflectance ρ:
+/// B = E/(1 − ρ) at every point, near edges and corners too: every point within kBias standard
+/// errors, and beyond kSigmas no more than chance puts there (0.27 % of 108: at most 2).
+TEST(ReferenceTest, FurnaceIsExactAtEveryPoint) {
+  const Scene base = loadScene(kScenes + "furnace.json");
+  int beyond = 0;
+  for (double rho : {0.5, 0.9}) {
+    const Scene scene = withReflectance(base, rho);
+    const TraceScene traced(scene);
+    const auto points = gridPoints(traced, {0.002, 0.5, 0.97});
+    ASSERT_EQ(points.size(), 6u * 9u);
+    TraceOptions options;
+    options.paths = 4096;
+    const auto estimates = PathTracer(traced).estimate(points, options);
+    for (size_t i = 0; i < points.size(); ++i)
+      beyond += outside(glm::dvec3(1 / (1 - rho)), estimates[i], points[i].position) > 0;
+  }
+  EXPECT_LE(beyond, 2);
+}
+
+/// The empty Cornell box with every reflectance 0 but the receivers': B = ρ·E·F, F the exact
+/// unoccluded factor from the point to the light (cornell_box.md lists four on the floor).
+TEST(ReferenceTest, DirectLightIsRhoEF) {
+  const Scene empty = withReflectance(loadScene(kScenes + "cornell_empty.json"), 0);
+  const glm::dvec3 rho(0.725, 0.71, 0.68);
+  struct Case { glm::dvec3 p, n; double F; };
+  const glm::dvec3 up(0, 1, 0), back(0, 0, -1);
+  std::vector<Case> cases = {{{278, 0, 279.5}, up, 0.014207}, {{50, 0, 50}, up, 0.0079242},
+                             {{500, 0, 500}, up, 0.0081908}, {{100, 0, 400}, up, 0.0107613},
+                             {{278, 0.5, 279.5}, up, -1}, {{278, 274, 559.2}, back, -1},
+                             {{20, 540, 559.2}, back, -1}, {{540, 3, 559.2}, back, -1}};
+  for (const auto& c : cases) {
+    // Only the receiving surface reflects: nothing else brings light.
+    Scene scene = empty;
+    glm::dvec3 E(0.0);
+    std::vector<glm::dvec3> light;
+    for (auto& s : scene.surfaces) {
+      Material& m = scene.materials[size_t(s.material)];
+      if (m.emits()) E = m.emission, light = s.polygons[0].outer;
+    }
+    const TraceScene traced(scene);
+    SurfacePoint q{c.p, c.n, -1, ""};
+    if (!locatePoint(traced, q, 1e-6 * traced.size())) {
+      EXPECT_EQ(c.p.y, 0.5);  // (278, 0.5, 279.5) lies on no surface
+      continue;
+    }
+    Material receiver;
+    receiver.name = "receiver";
+    receiver.reflectance = rho;
+    scene.materials.push_back(receiver);
+    scene.surfaces[size_t(q.surface)].material = int(scene.materials.size() - 1);
+    const double F = c.F >= 0 ? c.F : pointPolygonFormFactor(c.p, c.n, light);
+    EXPECT_NEAR(F, pointPolygonFormFactor(c.p, c.n, light), 1e-6);
+    TraceOptions options;
+    options.relativeError = 0.005;
+    expectWithin(rho * E * F, PathTracer(traced).estimate(q, 0, options), c.p);
+  }
+}
+
+/// Generalised furnace (oracles.md §4): a closed cube of uniform ρ = 0.5 lit by its ceiling
+/// alone (E = 1): the area-weighted mean of B over all faces is Σ A·E / ((1 − ρ) Σ A) = 1/3.
+/// Points uniform by area, one path each: the mean is unbiased for the area mean.
+TEST(ReferenceTest, GeneralisedFurnaceMean) {
+  const double rho = 0.5;
+  const Scene scene = withReflectance(loadScene(kScenes + "cube.json"), rho);
+  const TraceScene traced(scene);
+  const PathTracer tracer(traced);
+  const auto& tris = traced.triangles();
+  double total = 0, emitted = 0;
+  for (const auto& t : tris) total += t.area, emitted += t.area * traced.material(t.surface).emission.x;
+  Random rng = Random::stream(7, 0);
+  const long n = 400'000;
+  double sum = 0, sumSq = 0;
+  for (long i = 0; i < n; ++i) {
+    double u = rng.next() * total;
+    size_t t = 0;
+    while (t + 1 < tris.size() && u > tris[t].area) u -= tris[t++].area;
+    const double b = tracer.tracePath(traced.pointOn(int(t), rng.next(), rng.next()), tris[t].normal, tris[t].surface, rng).x;
+    sum += b, sumSq += b * b;
+  }
+  const double mean = sum / n, se = std::sqrt((sumSq / n - mean * mean) / (n - 1));
+  const double exact = emitted / ((1 - rho) * total);
+  EXPECT_NEAR(exact, 1.0 / 3.0, 1e-12);
+  EXPECT_LE(std::abs(mean - exact), kSigmas * se) << "mean " << mean << ", SE " << se;
+  EXPECT_LT(se / exact, 0.01);
+}
+
+/// The standard errors are honest: over many points of exact cases about 68.3 % of the
+/// estimates lie within one standard error and 99.7 % within three.
+TEST(ReferenceTest, StandardErrorsCoverTheTruth) {
+  const Scene scene = withReflectance(loadScene(kScenes + "furnace.json"), 0.5);
+  const TraceScene traced(scene);
+  std::vector<double> uv;
+  for (int i = 0; i < 10; ++i) uv.push_back(0.003 + 0.0994 * i);
+  const auto points = gridPoints(traced, uv);  // 600 points
+  TraceOptions options;
+  options.paths = 2048;
+  const auto estimates = PathTracer(traced).estimate(points, options);
+  int within1 = 0, within3 = 0, n = 0;
+  for (const auto& e : estimates)
+    for (int c = 0; c < 3; ++c, ++n) {
+      const double z = std::abs(e.B[c] - 2.0) / e.standardError[c];
+      within1 += z <= 1;
+      within3 += z <= 3;
+    }
+  // Binomial spread over 1 800 (correlated) channel estimates: a few points either way.
+  EXPECT_NEAR(double(within1) / n, 0.683, 0.05) << within1 << " of " << n;
+  EXPECT_GE(double(within3) / n, 0.985) << within3 << " of " << n;
+}
+
+/// The same seed gives the same numbers, whatever the number of workers.
+TEST(ReferenceTest, DeterministicForASeed) {
+  const Scene scene = loadScene(kScenes + "cornell.json");
+  const TraceScene traced(scene);
+  const auto points = placePoints(traced, 12, 3);
+  ASSERT_EQ(points.size(), 12u);
+  TraceOptions one, two;
+  one.paths = two.paths = 2000;
+  one.workers = 1, two.workers = 2;
+  const auto a = PathTracer(traced).estimate(points, one), b = PathTracer(traced).estimate(points, two);
+  for (size_t i = 0; i < points.size(); ++i) EXPECT_EQ(a[i].B, b[i].B);
+  EXPECT_EQ(placePoints(traced, 12, 3)[5].position, points[5].position);
+}
+
+/// Placed points lie on non-emitting surfaces, never inside the blocks (the floor under them),
+/// and a quarter lie near edges and contact lines.
+TEST(ReferenceTest, PlacesPointsOnVisibleSurfaces) {
+  const Scene scene = loadScene(kScenes + "cornell.json");
+  const TraceScene traced(scene);
+  const auto points = placePoints(traced, 400, 1);
+  ASSERT_EQ(points.size(), 400u);
+  int nearEdges = 0, onFloorNearBlocks = 0;
+  // The short block's footprint (cornell_box.md): inside it is hidden.
+  const std::vector<glm::dvec2> footprint = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
+  for (const auto& p : points) {
+    EXPECT_FALSE(traced.material(p.surface).emits());
+    nearEdges += p.tag == "edge";
+    if (scene.surfaces[size_t(p.surface)].name != "floor") continue;
+    bool inside = true;
+    for (size_t k = 0; k < footprint.size(); ++k) {
+      const glm::dvec2 a = footprint[k], b = footprint[(k + 1) % footprint.size()];
+      inside &= (b.x - a.x) * (p.position.z - a.y) - (b.y - a.y) * (p.position.x - a.x) < 0;
+    }
+    EXPECT_FALSE(inside) << "floor point under the short block at " << p.position.x << ", " << p.position.z;
+    onFloorNearBlocks += std::abs(p.position.x - 185) < 150 && std::abs(p.position.z - 170) < 150;
+  }
+  EXPECT_EQ(nearEdges, 100);
+  EXPECT_GT(onFloorNearBlocks, 10);
+}
+
+}  // namespace
+}  // namespace rad::pathtrace
