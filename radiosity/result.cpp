@@ -153,6 +153,14 @@ std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& m, const std::vector<gl
   return out;
 }
 
+std::vector<glm::dvec3> shownVertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                                             const glm::dvec3& ambient, const VertexDirect* direct) {
+  if (ambient == glm::dvec3(0.0)) return vertexRadiosity(mesh, B, direct);
+  std::vector<glm::dvec3> shown(B);
+  for (int e = 0; e < mesh.elementCount(); ++e) shown[size_t(e)] += mesh.reflectance(e) * ambient;
+  return vertexRadiosity(mesh, shown, direct);
+}
+
 std::optional<glm::dvec3> gouraudAt(const PatchMesh& m, const std::vector<int>& elements,
                                     const std::vector<glm::dvec3>& vertexValue, const glm::dvec3& x) {
   for (int e : elements) {
@@ -213,12 +221,8 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
                  const VertexDirect* direct) {
   std::vector<glm::dvec3> vertexB = vertexRadiosity(mesh, B, direct);
   // The display colour adds ρ·ambient, reconstructed at the vertices like B.
-  std::vector<glm::dvec3> display(vertexB);
-  if (ambient != glm::dvec3(0.0)) display = vertexRadiosity(mesh, [&] {
-    std::vector<glm::dvec3> shown(B);
-    for (int e = 0; e < mesh.elementCount(); ++e) shown[e] += mesh.reflectance(e) * ambient;
-    return shown;
-  }(), direct);
+  const std::vector<glm::dvec3> display =
+      ambient != glm::dvec3(0.0) ? shownVertexRadiosity(mesh, B, ambient, direct) : vertexB;
   PlyMesh ply = toPly(mesh);
   char buf[512];
   std::snprintf(buf, sizeof buf,

@@ -35,6 +35,11 @@ struct VertexDirect {
 std::vector<glm::dvec3> vertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                                         const VertexDirect* direct);
 
+/// What Gouraud shading shows at each vertex: the vertex radiosity of B + ρ·ambient (the
+/// ambient term of an unconverged solve; zero once converged), with `direct` as above.
+std::vector<glm::dvec3> shownVertexRadiosity(const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
+                                             const glm::dvec3& ambient, const VertexDirect* direct);
+
 /// The value Gouraud shading shows at point x: the vertex values of the element among
 /// `elements` that contains x (within its plane's tolerance of 1e-6 of its size), interpolated
 /// barycentrically; nullopt when none does.

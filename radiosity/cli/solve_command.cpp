@@ -17,6 +17,7 @@
 #include "radiosity/progressive_solver.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/true_error.h"
 
 namespace rad::cli {
 namespace {
@@ -28,8 +29,22 @@ constexpr double kHistoryShotGrowth = 1.25;
 constexpr double kProgressSeconds = 0.1;
 
 struct SolveOptions {
-  std::string scene, output, report, reference;
+  std::string scene, output, report, reference, fixedPoint;
   SolverBlock flags;
+};
+
+/// What the history measures: the true error against an independent reference, and the
+/// distance to the direct solution of the same mesh and factors (convergence, not error).
+struct Measures {
+  std::unique_ptr<TrueError> truth;
+  std::vector<glm::dvec3> fixedPoint;
+};
+
+/// The solution as baked: B without negative channels, and the ambient term while unconverged.
+struct Baked {
+  std::vector<glm::dvec3> B;
+  glm::dvec3 ambient{0.0};
+  int clamped = 0;
 };
 
 using Json = nlohmann::ordered_json;
@@ -44,42 +59,114 @@ const char* stopName(ProgressiveSolver::Stop s) {
   }
 }
 
-Json historyRow(const ProgressiveSolver& solver, const PatchMesh& mesh,
-                const std::vector<glm::dvec3>& reference) {
+/// Overshooting can leave a slightly negative channel mid-solve; a result never carries one.
+/// With direct light from rays at the vertices, the emission not yet shot is already shown,
+/// so the ambient term leaves it out.
+Baked bake(const ProgressiveSolver& solver, bool directAtVertices) {
+  Baked b;
+  const bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
+  b.ambient = converged ? glm::dvec3(0.0) : glm::max(solver.ambient(directAtVertices), glm::dvec3(0.0));
+  b.B = solver.radiosity();
+  for (auto& x : b.B)
+    if (x.x < 0 || x.y < 0 || x.z < 0) {
+      ++b.clamped;
+      x = glm::max(x, glm::dvec3(0.0));
+    }
+  return b;
+}
+
+std::unique_ptr<VertexDirect> vertexDirect(const ProgressiveSolver& solver, const SolvableScene& s) {
+  if (!s.direct) return nullptr;
+  return std::make_unique<VertexDirect>(VertexDirect{solver.direct(), s.direct->radiosity(), s.base.get()});
+}
+
+/// The true error of what a viewer would show now.
+ErrorSummary trueErrorNow(const ProgressiveSolver& solver, const SolvableScene& s, const TrueError& truth) {
+  const Baked b = bake(solver, bool(s.direct));
+  const auto direct = vertexDirect(solver, s);
+  return truth.measure(shownVertexRadiosity(s.mesh, b.B, b.ambient, direct.get()));
+}
+
+Json historyRow(const ProgressiveSolver& solver, const SolvableScene& s, const Measures& m) {
   Json row;
   row["seconds"] = solver.seconds();
   row["shots"] = solver.shots();
   row["unshot_fraction"] = solver.unshotFraction();
   row["residual"] = solver.ledger().residual();
-  if (!reference.empty()) row["error"] = relativeError(mesh, solver.radiosity(), reference);
+  if (m.truth) {
+    const ErrorSummary e = trueErrorNow(solver, s, *m.truth);
+    row["error"] = e.rms;
+    row["error_rms_rgb"] = rgb(e.rmsRgb);
+    row["error_mean_rgb"] = rgb(e.meanRgb);
+  }
+  if (!m.fixedPoint.empty()) row["fixed_point_distance"] = relativeError(s.mesh, solver.radiosity(), m.fixedPoint);
   return row;
+}
+
+Json position(const glm::dvec3& p) { return rgb(p); }
+
+/// The report's "error" block: the definition, the reference and the summary.
+Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string& file) {
+  Json j;
+  j["definition"] = "relative error (shown - reference) / reference per channel of the Gouraud vertex "
+                    "radiosity (ambient term included while unconverged) at the reference's points; "
+                    "channels below 1 % of the brightest reference value in that channel skipped";
+  j["reference"] = file;
+  j["points"] = truth.points().size();
+  j["points_not_in_result"] = truth.notInResult();
+  j["channels_used"] = e.used;
+  j["channels_skipped"] = e.skipped;
+  j["rms"] = e.rms;
+  j["rms_rgb"] = rgb(e.rmsRgb);
+  j["mean_rgb"] = rgb(e.meanRgb);
+  j["reference_noise_rms"] = e.referenceNoise;
+  if (e.worstPoint >= 0) {
+    const ReferencePoint& p = truth.points()[size_t(e.worstPoint)];
+    j["worst"] = {{"surface", p.surface}, {"tag", p.tag}, {"position", position(p.position)},
+                  {"reference", rgb(p.B)}, {"shown", rgb(e.worstShown)}, {"relative_error", e.worst}};
+  }
+  Json table = Json::array();
+  for (const auto& s : e.perSurface)
+    table.push_back({{"surface", s.name}, {"points", s.points}, {"rms", s.rms}, {"mean", s.mean}});
+  j["per_surface"] = table;
+  return j;
 }
 
 void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
+  // The reference is read before any work: a bad file fails at once.
+  std::vector<ReferencePoint> referencePoints;
+  if (!o.reference.empty()) {
+    if (o.reference == "direct" || o.reference.size() < 4 || o.reference.substr(o.reference.size() - 4) == ".ply")
+      throw inputError("--reference " + o.reference,
+                       "a reference CSV written by 'radiosity reference' (for the distance to the "
+                       "direct solution of the same mesh and factors, use --fixed-point)", o.reference);
+    referencePoints = readReferenceFile(o.reference).points;
+  }
   SolvableScene solvable = loadSolvable(o.scene, o.flags);
   const auto& [scene, settings, mesh, direct, adaptive, base] = solvable;
   SolverOptions options = solverOptions(settings);
   std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 0);
   HemicubeFactors& factors = *hemicubes;
-  // The reference first, so that the solve's own clock does not count it.
-  std::vector<glm::dvec3> reference;
-  if (o.reference == "direct")
-    reference = TransportMatrix(mesh, factors, options).solveDirect();
-  else if (!o.reference.empty())
-    reference = readResultRadiosity(o.reference, mesh, scene.diagonal());
+  // The fixed point first, so that the solve's own clock does not count it.
+  Measures measures;
+  if (o.fixedPoint == "direct")
+    measures.fixedPoint = TransportMatrix(mesh, factors, options).solveDirect();
+  else if (!o.fixedPoint.empty())
+    measures.fixedPoint = readResultRadiosity(o.fixedPoint, mesh, scene.diagonal());
+  if (!referencePoints.empty()) measures.truth = std::make_unique<TrueError>(mesh, scene, std::move(referencePoints));
   ProgressiveSolver solver(mesh, factors, options);
 
   // Shoot, keeping the history and showing progress on a terminal.
   Json history = Json::array();
-  history.push_back(historyRow(solver, mesh, reference));
+  history.push_back(historyRow(solver, solvable, measures));
   double nextRowShots = 1, lastRowSeconds = 0, lastProgress = 0;
   const bool terminal = isatty(STDERR_FILENO);
   while (solver.step()) {
     double t = solver.seconds();
     if (solver.shots() >= nextRowShots || t - lastRowSeconds >= kHistorySeconds) {
-      history.push_back(historyRow(solver, mesh, reference));
+      history.push_back(historyRow(solver, solvable, measures));
       nextRowShots = std::ceil(solver.shots() * kHistoryShotGrowth);
       lastRowSeconds = t;
     }
@@ -90,21 +177,15 @@ void runSolve(const SolveOptions& o) {
     }
   }
   if (terminal) std::fprintf(stderr, "\n");
-  if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver, mesh, reference));
+  // The last row measures what is baked.
+  if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solver, solvable, measures));
 
-  // Bake: unconverged solutions show the ambient term in their display colours. Overshooting
-  // can leave a slightly negative channel mid-solve; the result never carries one.
-  bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
-  // With direct light from rays at the vertices, the emission not yet shot is already shown.
-  glm::dvec3 ambient = converged ? glm::dvec3(0.0)
-                                 : glm::max(solver.ambient(bool(direct)), glm::dvec3(0.0));
-  std::vector<glm::dvec3> B = solver.radiosity();
-  int clamped = 0;
-  for (auto& b : B)
-    if (b.x < 0 || b.y < 0 || b.z < 0) {
-      ++clamped;
-      b = glm::max(b, glm::dvec3(0.0));
-    }
+  // Bake: unconverged solutions show the ambient term in their display colours.
+  const bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
+  const Baked baked = bake(solver, bool(direct));
+  const std::vector<glm::dvec3>& B = baked.B;
+  const glm::dvec3 ambient = baked.ambient;
+  const int clamped = baked.clamped;
   if (clamped)
     std::fprintf(stderr, "radiosity: warning: %d elements had a negative channel (overshooting "
                          "before convergence), set to 0\n", clamped);
@@ -186,21 +267,31 @@ void runSolve(const SolveOptions& o) {
   report["energy"] = {{"emitted", rgb(l.emitted)}, {"absorbed", rgb(l.absorbed)},
                       {"escaped", rgb(l.escaped)}, {"unshot", rgb(l.unshot)},
                       {"residual", l.residual()}};
-  if (!reference.empty()) {
-    report["reference"] = o.reference;
-    report["error"] = relativeError(mesh, solver.radiosity(), reference);
+  std::unique_ptr<ErrorSummary> trueError;
+  if (measures.truth) {
+    trueError = std::make_unique<ErrorSummary>(trueErrorNow(solver, solvable, *measures.truth));
+    report["error"] = errorBlock(*trueError, *measures.truth, o.reference);
+  }
+  if (!measures.fixedPoint.empty()) {
+    report["fixed_point"] = o.fixedPoint;
+    report["fixed_point_distance"] = relativeError(mesh, solver.radiosity(), measures.fixedPoint);
   }
   report["history"] = history;
 
   // Outputs: each through a temporary file; the report last, so a report means a result.
-  std::unique_ptr<VertexDirect> vertexDirect;
-  if (direct) vertexDirect.reset(new VertexDirect{solver.direct(), direct->radiosity(), base.get()});
-  writeResult(o.output, mesh, B, ambient, exposure, camera, vertexDirect.get());
+  const auto vertexLight = vertexDirect(solver, solvable);
+  writeResult(o.output, mesh, B, ambient, exposure, camera, vertexLight.get());
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
   std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",
                converged ? "converged" : "stopped", solver.shots(), solver.seconds(),
                solver.unshotFraction(), stopName(solver.stopReason()), o.output.c_str());
+  if (trueError)
+    std::fprintf(stderr, "radiosity: true error (RMS of the relative error at %d channel values of %zu points, "
+                         "against %s): %.2f %% (reference noise %.2f %%), mean %+.2f/%+.2f/%+.2f %%\n",
+                 trueError->used, measures.truth->points().size(), o.reference.c_str(), 100 * trueError->rms,
+                 100 * trueError->referenceNoise, 100 * trueError->meanRgb.x, 100 * trueError->meanRgb.y,
+                 100 * trueError->meanRgb.z);
 }
 
 }  // namespace
@@ -226,9 +317,13 @@ Command addSolveCommand(CLI::App& app) {
                   "Overshooting factor ω in [1, 2] (solver.overshoot; default 1.3, measured; 1: plain shooting)")
       ->check(CLI::Range(1.0, 2.0));
   sub->add_option("--reference", o->reference,
-                  "Compare with a reference: 'direct' (solve the full system from the same hemicubes "
-                  "first) or an earlier result PLY of the same scene and mesh settings; the "
-                  "report's history then has the relative L2 error");
+                  "Measure the true error against a reference CSV from 'radiosity reference': the "
+                  "report's history and its 'error' block then hold the relative error of what a "
+                  "viewer shows at the reference's points");
+  sub->add_option("--fixed-point", o->fixedPoint,
+                  "Measure convergence (not error) to 'direct' (the full system solved from the same "
+                  "hemicubes first) or an earlier result PLY of the same scene and mesh settings: "
+                  "the history's fixed_point_distance, relative L2 over elements");
   sub->add_option("--exposure", o->flags.exposure,
                   "Display exposure K (solver.exposure; default: automatic, see README)")
       ->check(CLI::PositiveNumber);

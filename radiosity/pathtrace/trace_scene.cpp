@@ -29,12 +29,24 @@ bool insideTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& 
   return cross2(a, b, p) > 0 && cross2(b, c, p) > 0 && cross2(c, a, p) > 0;
 }
 
+double angleAt(const glm::dvec2& p, const glm::dvec2& at, const glm::dvec2& q) {
+  const glm::dvec2 u = p - at, v = q - at;
+  return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
+}
+
 /// Ear clipping of a simple ring given counter-clockwise in 2D: triangles as index triples.
 /// Where rounding leaves no clean ear, the most convex corner is clipped, so it always ends.
 std::vector<std::array<int, 3>> earClip(const std::vector<glm::dvec2>& pts) {
   std::vector<int> ring(pts.size());
   for (size_t i = 0; i < pts.size(); ++i) ring[i] = int(i);
   std::vector<std::array<int, 3>> out;
+  // A quad (a bent wall is one) takes its Delaunay diagonal: the angles facing it sum to at
+  // most π. The same polygon meshed elsewhere then bends along the same line.
+  if (pts.size() == 4 && cross2(pts[0], pts[1], pts[2]) > 0 && cross2(pts[2], pts[3], pts[0]) > 0 &&
+      angleAt(pts[0], pts[1], pts[2]) + angleAt(pts[2], pts[3], pts[0]) <= 3.14159265358979323846)
+    return {{0, 1, 2}, {0, 2, 3}};
+  if (pts.size() == 4 && cross2(pts[1], pts[2], pts[3]) > 0 && cross2(pts[3], pts[0], pts[1]) > 0)
+    return {{1, 2, 3}, {1, 3, 0}};
   while (ring.size() > 3) {
     const size_t n = ring.size();
     int best = -1;

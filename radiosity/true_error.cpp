@@ -1,0 +1,123 @@
+#include "radiosity/true_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+
+namespace rad {
+namespace {
+
+/// Elements whose normal is farther than this from the point's are on another side.
+constexpr double kFacing = 0.5;
+
+/// The point of triangle (a, b, c) nearest x, as barycentric weights.
+glm::dvec3 nearestWeights(const glm::dvec3& x, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double twice = glm::dot(n, n);
+  glm::dvec3 w(glm::dot(glm::cross(c - b, x - b), n), glm::dot(glm::cross(a - c, x - c), n),
+               glm::dot(glm::cross(b - a, x - a), n));
+  w /= twice;
+  if (w.x >= 0 && w.y >= 0 && w.z >= 0) return w;
+  // Outside: the nearest point on the nearest edge.
+  glm::dvec3 best(1, 0, 0);
+  double bestDistance = HUGE_VAL;
+  const glm::dvec3 corners[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 &p = corners[k], &q = corners[(k + 1) % 3];
+    const double t = std::clamp(glm::dot(x - p, q - p) / glm::dot(q - p, q - p), 0.0, 1.0);
+    const double d = glm::length(x - (p + t * (q - p)));
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = glm::dvec3(0.0);
+      best[k] = 1 - t;
+      best[(k + 1) % 3] = t;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points)
+    : points_(std::move(points)), where_(points_.size()) {
+  std::map<std::string, int> surfaceOf;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) surfaceOf.emplace(scene.surfaces[s].name, int(s));
+  std::vector<std::vector<int>> elementsOf(scene.surfaces.size());
+  for (int e = 0; e < mesh.elementCount(); ++e) elementsOf[size_t(mesh.surface(e))].push_back(e);
+  std::vector<int> all(size_t(mesh.elementCount()));
+  for (int e = 0; e < mesh.elementCount(); ++e) all[size_t(e)] = e;
+  const double reach = kOnResult * scene.diagonal();
+  for (size_t i = 0; i < points_.size(); ++i) {
+    const ReferencePoint& p = points_[i];
+    const auto named = surfaceOf.find(p.surface);
+    const std::vector<int>& candidates = named != surfaceOf.end() ? elementsOf[size_t(named->second)] : all;
+    double nearest = HUGE_VAL;
+    for (int e : candidates) {
+      if (glm::dot(mesh.normal(e), p.normal) < kFacing) continue;
+      const auto c = mesh.corners(e);
+      const glm::dvec3 w = nearestWeights(p.position, c[0], c[1], c[2]);
+      const double d = glm::length(p.position - (w.x * c[0] + w.y * c[1] + w.z * c[2]));
+      if (d >= nearest) continue;
+      nearest = d;
+      int k = 0;
+      for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) where_[i].vertex[k++] = v.idx();
+      where_[i].weight = w;
+    }
+    if (nearest > reach) where_[i] = Location{}, ++notInResult_;
+  }
+  for (const auto& p : points_) floor_ = glm::max(floor_, p.B);
+  floor_ *= kDarkShare;
+}
+
+std::vector<glm::dvec3> TrueError::shown(const std::vector<glm::dvec3>& vertexValue) const {
+  std::vector<glm::dvec3> out(points_.size(), glm::dvec3(0.0));
+  for (size_t i = 0; i < points_.size(); ++i) {
+    const Location& l = where_[i];
+    if (l.vertex[0] < 0) continue;  // not in the result: nothing shown
+    for (int k = 0; k < 3; ++k) out[i] += l.weight[k] * vertexValue[size_t(l.vertex[k])];
+  }
+  return out;
+}
+
+ErrorSummary TrueError::measure(const std::vector<glm::dvec3>& vertexValue) const {
+  const std::vector<glm::dvec3> value = shown(vertexValue);
+  ErrorSummary s;
+  glm::dvec3 sumSq(0.0), sum(0.0), count(0.0);
+  double noise = 0, total = 0;
+  std::map<std::string, size_t> surfaceIndex;
+  std::vector<double> surfaceSq, surfaceSum;
+  for (size_t i = 0; i < points_.size(); ++i) {
+    const ReferencePoint& p = points_[i];
+    auto [it, added] = surfaceIndex.emplace(p.surface, s.perSurface.size());
+    if (added) s.perSurface.push_back({p.surface, 0, 0, 0}), surfaceSq.push_back(0), surfaceSum.push_back(0);
+    ErrorSummary::Surface& table = s.perSurface[it->second];
+    ++table.points;
+    for (int c = 0; c < 3; ++c) {
+      if (!(p.B[c] > floor_[c]) || !(p.B[c] > 0)) {
+        ++s.skipped;
+        continue;
+      }
+      const double e = (value[i][c] - p.B[c]) / p.B[c];
+      ++s.used;
+      sum[c] += e, sumSq[c] += e * e, count[c] += 1;
+      total += e * e;
+      noise += (p.standardError[c] / p.B[c]) * (p.standardError[c] / p.B[c]);
+      surfaceSq[it->second] += e * e, surfaceSum[it->second] += e;
+      if (std::abs(e) > std::abs(s.worst)) s.worst = e, s.worstPoint = int(i), s.worstShown = value[i];
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+    if (count[c] > 0) s.rmsRgb[c] = std::sqrt(sumSq[c] / count[c]), s.meanRgb[c] = sum[c] / count[c];
+  if (s.used) s.rms = std::sqrt(total / s.used), s.referenceNoise = std::sqrt(noise / s.used);
+  // Per surface, over the channels used there.
+  std::vector<int> used(s.perSurface.size(), 0);
+  for (size_t i = 0; i < points_.size(); ++i)
+    for (int c = 0; c < 3; ++c) used[surfaceIndex[points_[i].surface]] += points_[i].B[c] > floor_[c] && points_[i].B[c] > 0;
+  for (size_t k = 0; k < s.perSurface.size(); ++k)
+    if (used[k]) s.perSurface[k].rms = std::sqrt(surfaceSq[k] / used[k]), s.perSurface[k].mean = surfaceSum[k] / used[k];
+  return s;
+}
+
+}  // namespace rad
