@@ -94,14 +94,42 @@ cli_test(info.no_emitter 0 "" "" info ${DATA}/no_emitter.json)
 cli_test(bad.solve_report_folder 1 "no_such_folder/r.json: expected an output file in an existing folder"
          OUT/r.ply solve ${DATA}/good_small.json -o OUT/r.ply --report OUT/no_such_folder/r.json --hemicube 32)
 cli_test(usage.solve_overshoot 2 "overshoot" OUT/o.ply solve ${DATA}/good_small.json -o OUT/o.ply --overshoot 3)
-cli_test(solve.reference_direct 0 "converged after" OUT/ref.ply
-         solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/ref.ply --reference direct --hemicube 64)
-cli_test(bad.solve_reference_mismatch 1 "small.ply: expected a result of the same scene and mesh settings"
+cli_test(solve.fixed_point_direct 0 "converged after" OUT/ref.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/ref.ply --fixed-point direct --hemicube 64)
+cli_test(bad.solve_fixed_point_mismatch 1 "small.ply: expected a result of the same scene and mesh settings"
          OUT/mismatch.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/mismatch.ply
-         --reference ${OUT_DIR}/solve.small/small.ply --hemicube 32)
-set_tests_properties(cli.bad.solve_reference_mismatch PROPERTIES DEPENDS cli.solve.small)
-cli_test(convergence.small 0 "Gauss-Seidel" OUT/conv.svg
-         convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/conv.svg --csv OUT/conv.csv --hemicube 32)
+         --fixed-point ${OUT_DIR}/solve.small/small.ply --hemicube 32)
+set_tests_properties(cli.bad.solve_fixed_point_mismatch PROPERTIES DEPENDS cli.solve.small)
+
+# The independent reference, and the true error measured against it.
+cli_test(reference.cube 0 "20 points, .* paths .*wrote" OUT/ref.csv
+         reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/ref.csv --count 20 --paths 4000)
+cli_test(reference.points 0 "2 points" OUT/ref.csv
+         reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/ref.csv --points ${DATA}/cube_points.txt --paths 1000)
+cli_test(solve.true_error 0 "true error .RMS of the relative error at [0-9]+ channel values of 20 points" OUT/t.ply
+         solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/t.ply --report OUT/t.json --hemicube 32
+         --tolerance 1e-2 --reference ${OUT_DIR}/reference.cube/ref.csv)
+set_tests_properties(cli.solve.true_error PROPERTIES DEPENDS cli.reference.cube)
+cli_test(reference.squares 0 "wrote" OUT/ref.csv
+         reference ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/ref.csv --count 20 --paths 2000)
+cli_test(convergence.small 0 "Gauss-Seidel.*front .*true error" OUT/conv.svg
+         convergence ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/conv.svg --csv OUT/conv.csv
+         --hemicube 32 --tolerance 1e-3 --reference ${OUT_DIR}/reference.squares/ref.csv)
+set_tests_properties(cli.convergence.small PROPERTIES DEPENDS cli.reference.squares)
+cli_test(bad.solve_reference_ply 1 "--reference direct: expected a reference CSV written by 'radiosity reference' .for the distance to the direct solution of the same mesh and factors, use --fixed-point."
+         OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference direct)
+cli_test(bad.solve_reference_columns 1 "bad_reference.csv: line 3: expected 15 comma-separated columns, found 3"
+         OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference ${DATA}/bad/bad_reference.csv)
+cli_test(bad.solve_reference_missing 1 "no_such.csv: expected a readable reference file .CSV., found none could be opened"
+         OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference ${DATA}/no_such.csv)
+cli_test(bad.reference_points_line 1 "bad_points.txt: line 2: expected x y z nx ny nz .tag., six finite numbers, found '0.5 0 0.5 0 1'"
+         OUT/r.csv reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.csv --points ${DATA}/bad/bad_points.txt)
+cli_test(bad.reference_point_off_surface 1 "off_surface_points.txt: line 1: expected a point on a surface"
+         OUT/r.csv reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.csv --points ${DATA}/bad/off_surface_points.txt)
+cli_test(bad.reference_no_emitter 1 "no_emitter.json: surfaces: expected at least one surface whose material has an emission, found none"
+         OUT/r.csv reference ${DATA}/no_emitter.json -o OUT/r.csv)
+cli_test(usage.reference_paths_and_error 2 "excludes" OUT/r.csv
+         reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.csv --paths 100 --relative-error 0.1)
 
 # Adaptive subdivision: its flags, and their bad values.
 cli_test(solve.adaptive_flags 0 "converged after" OUT/adaptive.ply

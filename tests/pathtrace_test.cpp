@@ -1,14 +1,20 @@
 // The independent reference (radiosity/pathtrace) against exact answers: the furnace, the direct
 // light of an empty Cornell box by the exact point-to-polygon factor, the generalised furnace,
-// and the honesty of its standard errors (their coverage).
+// and the honesty of its standard errors (their coverage); and the true error measured against
+// it (radiosity/true_error) against the true error measured against the exact answer.
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "mesh/scene.h"
+#include "mesh/settings.h"
+#include "radiosity/adaptive.h"
 #include "radiosity/pathtrace/path_tracer.h"
 #include "radiosity/point_polygon.h"
+#include "radiosity/progressive_solver.h"
+#include "radiosity/result.h"
+#include "radiosity/true_error.h"
 
 namespace rad::pathtrace {
 namespace {
@@ -217,3 +223,68 @@ TEST(ReferenceTest, PlacesPointsOnVisibleSurfaces) {
 
 }  // namespace
 }  // namespace rad::pathtrace
+
+namespace rad {
+namespace {
+
+/// `solve --reference` on the furnace, whose exact answer (B = 2 everywhere at ρ = 0.5) is
+/// known: the true error measured against a path-traced reference agrees with the error
+/// against the exact answer to within the reference's own noise.
+TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
+  const Scene furnace = loadScene(std::string(RAD_SOURCE_DIR) + "/scenes/furnace.json");
+  SolverBlock flags;
+  flags.maxElementEdge = 0.125;
+  flags.maxPatchEdge = 0.5;
+  flags.tolerance = 1e-3;
+  flags.emitterSamples = 4;
+  flags.hemicubeResolution = flags.emitterHemicubeResolution = 64;
+  const Settings settings = resolveSettings(furnace, flags);
+  const SceneMesh m = meshScene(furnace, settings);
+  HemicubeFactors factors(m.mesh, settings.hemicubeResolution, furnace.diagonal(), settings.seed, 0,
+                          settings.emitterHemicubeResolution);
+  SolverOptions options;
+  options.tolerance = settings.tolerance;
+  options.emitterSamples = settings.emitterSamples;
+  ProgressiveSolver solver(m.mesh, factors, options);
+  while (solver.step()) {}
+  std::unique_ptr<VertexDirect> direct;
+  if (m.direct) direct.reset(new VertexDirect{solver.direct(), m.direct->radiosity(), m.base.get()});
+  const std::vector<glm::dvec3> shown = vertexRadiosity(m.mesh, solver.radiosity(), direct.get());
+
+  // Points on every face, near edges too; the reference by path tracing, and the truth.
+  const pathtrace::TraceScene traced(furnace);
+  std::vector<pathtrace::SurfacePoint> points;
+  for (const auto& s : furnace.surfaces) {
+    const auto& r = s.polygons[0].outer;
+    const glm::dvec3 n = glm::normalize(glm::cross(r[1] - r[0], r[3] - r[0]));
+    for (double u : {0.01, 0.3, 0.7})
+      for (double v : {0.02, 0.5, 0.95}) {
+        pathtrace::SurfacePoint q{r[0] + u * (r[1] - r[0]) + v * (r[3] - r[0]), n, -1, ""};
+        ASSERT_TRUE(pathtrace::locatePoint(traced, q, 1e-6));
+        points.push_back(q);
+      }
+  }
+  pathtrace::TraceOptions trace;
+  trace.paths = 8192;
+  const auto estimates = pathtrace::PathTracer(traced).estimate(points, trace);
+  std::vector<ReferencePoint> reference, exact;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ReferencePoint p{points[i].position, points[i].normal, furnace.surfaces[size_t(points[i].surface)].name,
+                           "", estimates[i].B, estimates[i].standardError, estimates[i].paths};
+    reference.push_back(p);
+    exact.push_back(p);
+    exact.back().B = glm::dvec3(2.0);
+    exact.back().standardError = glm::dvec3(0.0);
+  }
+  const ErrorSummary measured = TrueError(m.mesh, furnace, reference).measure(shown);
+  const ErrorSummary truth = TrueError(m.mesh, furnace, exact).measure(shown);
+  EXPECT_EQ(measured.used, 3 * int(points.size()));
+  EXPECT_GT(truth.rms, 0.001);  // the solve is not exact: there is an error to measure
+  EXPECT_GT(measured.referenceNoise, 0.0);
+  EXPECT_LE(std::abs(measured.rms - truth.rms), measured.referenceNoise)
+      << "measured " << measured.rms << ", true " << truth.rms << ", reference noise " << measured.referenceNoise;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(measured.meanRgb[c], truth.meanRgb[c], measured.referenceNoise);
+}
+
+}  // namespace
+}  // namespace rad

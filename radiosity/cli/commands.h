@@ -12,6 +12,8 @@
 #include "radiosity/adaptive.h"
 #include "radiosity/direct_light.h"
 #include "radiosity/progressive_solver.h"
+#include "radiosity/result.h"
+#include "radiosity/true_error.h"
 
 namespace rad::cli {
 
@@ -54,6 +56,20 @@ SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter
 SolverOptions solverOptions(const Settings& settings);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const SolvableScene& s, int workers);
+
+/// A solution as baked: B without negative channels, and the ambient term while unconverged.
+struct Baked {
+  std::vector<glm::dvec3> B;
+  glm::dvec3 ambient{0.0};
+  int clamped = 0;
+};
+
+/// The solver's current solution as the result file bakes it.
+Baked bake(const ProgressiveSolver& solver, bool directAtVertices);
+/// The direct light the vertices show (null without rays).
+std::unique_ptr<VertexDirect> vertexDirect(const ProgressiveSolver& solver, const SolvableScene& s);
+/// The true error of what a viewer would show of the solver's current solution.
+ErrorSummary trueErrorNow(const ProgressiveSolver& solver, const SolvableScene& s, const TrueError& truth);
 
 /// Prints the loader's and the mesher's warnings on stderr.
 void printWarnings(const std::vector<std::string>& warnings);

@@ -1,6 +1,11 @@
-// radiosity convergence SCENE -o PLOT.svg [--csv DATA.csv]: error against run time for plain
-// progressive refinement, progressive with the ambient term, overshooting, Jacobi and
-// Gauss–Seidel, all on the same hemicube factors, against the direct solution.
+// radiosity convergence SCENE --reference REFERENCE.csv -o PLOT.svg [--csv DATA.csv]: the true
+// error (against an independent reference) against run time, for the solver variants on one
+// mesh and for a ladder of settings solved the way `radiosity solve` solves, with the front of
+// the fastest setting for each error.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -10,26 +15,34 @@
 #include "mesh/error.h"
 #include "mesh/output_file.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/reference_points.h"
 #include "mesh/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/cli/svg_plot.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/reference_solver.h"
+#include "radiosity/result.h"
+#include "radiosity/true_error.h"
 
 namespace rad::cli {
 namespace {
 
-/// Each method runs until its error falls below this, or its budget runs out.
-constexpr double kTargetError = 1e-4;
 constexpr int kMaxSweeps = 200;
-/// Progressive runs stop at this many shots per patch at most.
+/// Progressive runs stop at this many shots per patch at most, or at this share unshot.
 constexpr long kMaxShotsPerPatch = 40;
+constexpr double kVariantTolerance = 1e-5;
+/// The ladder's solves stop at this share unshot (ten times below the default tolerance, so
+/// that each curve shows where its discretisation levels off).
+constexpr double kLadderTolerance = 1e-4;
+/// History rows: at shot counts growing by this factor.
+constexpr double kRowGrowth = 1.15;
 /// Overshooting factor of the "overshooting" curve unless --overshoot says otherwise.
 constexpr double kOvershootCurve = 1.3;
 
 struct ConvergenceOptions {
-  std::string scene, output, csv;
+  std::string scene, output, csv, reference;
   SolverBlock flags;
+  bool variants = true, ladder = true;
 };
 
 struct Curve {
@@ -41,112 +54,188 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-/// One progressive run; `ambient` measures the displayed solution B + ρ·ambient.
+/// One progressive run on fixed factors; `ambient` shows B + ρ·ambient.
 Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSource& factors,
-                       SolverOptions options, bool ambient, const std::vector<glm::dvec3>& reference) {
+                       SolverOptions options, bool ambient, const TrueError& truth) {
   Curve c{{name, {}}, {}};
-  options.tolerance = 1e-12;
+  options.tolerance = std::min(options.tolerance, kVariantTolerance);
   options.maxShots = kMaxShotsPerPatch * long(mesh.patches.size());
   ProgressiveSolver solver(mesh, factors, options);
-  std::vector<glm::dvec3> shown(mesh.elementCount());
   auto error = [&] {
-    if (!ambient) return relativeError(mesh, solver.radiosity(), reference);
-    glm::dvec3 a = solver.ambient();
-    for (int e = 0; e < mesh.elementCount(); ++e) shown[e] = solver.radiosity()[e] + mesh.reflectance(e) * a;
-    return relativeError(mesh, shown, reference);
+    const glm::dvec3 a = ambient ? glm::max(solver.ambient(), glm::dvec3(0.0)) : glm::dvec3(0.0);
+    return truth.measure(shownVertexRadiosity(mesh, solver.radiosity(), a, nullptr)).rms;
   };
-  double measuring = 0;  // the error evaluations are not the solver's time
   long next = 1;
   c.series.points.push_back({0, error()});
   c.steps.push_back(0);
   while (solver.step()) {
     if (solver.shots() < next) continue;
-    next = std::max(next + 1, long(next * 1.1));
-    auto t0 = std::chrono::steady_clock::now();
-    double e = error();
-    c.series.points.push_back({solver.seconds() - measuring, e});
+    next = std::max(next + 1, long(next * kRowGrowth));
+    c.series.points.push_back({solver.seconds(), error()});  // the solver's clock: measuring is not counted
     c.steps.push_back(solver.shots());
-    measuring += seconds(t0);
-    if (e < kTargetError) break;
   }
   return c;
 }
 
 /// Jacobi or Gauss–Seidel, starting at the time the matrix took to build.
 Curve gatheringCurve(const std::string& name, const TransportMatrix& system, double start,
-                     bool gaussSeidel, const PatchMesh& mesh, const std::vector<glm::dvec3>& reference) {
+                     bool gaussSeidel, const PatchMesh& mesh, const TrueError& truth) {
   Curve c{{name, {}}, {}};
   std::vector<glm::dvec3> E(mesh.elementCount());
   for (int e = 0; e < mesh.elementCount(); ++e) E[e] = mesh.emission(e);
-  c.series.points.push_back({start, relativeError(mesh, E, reference)});
+  c.series.points.push_back({start, truth.measure(vertexRadiosity(mesh, E)).rms});
   c.steps.push_back(0);
-  double measuring = 0;
+  double measuring = 0, last = HUGE_VAL;
   auto t0 = std::chrono::steady_clock::now();
   auto record = [&](int sweep, const std::vector<glm::dvec3>& B) {
     auto m0 = std::chrono::steady_clock::now();
-    double e = relativeError(mesh, B, reference);
+    const double e = truth.measure(vertexRadiosity(mesh, B)).rms;
     c.series.points.push_back({start + seconds(t0) - measuring, e});
     c.steps.push_back(sweep);
     measuring += seconds(m0);
-    return e >= kTargetError;
+    const bool settled = std::abs(e - last) < 1e-5 * e;
+    last = e;
+    return !settled;
   };
   if (gaussSeidel) system.solveGaussSeidel(kMaxSweeps, record);
   else system.solveJacobi(kMaxSweeps, record);
   return c;
 }
 
-void runConvergence(const ConvergenceOptions& o) {
-  checkOutputPath(o.output);
-  if (!o.csv.empty()) checkOutputPath(o.csv);
-  // The solvers are compared on one mesh against its dense direct solution: adaptive
-  // refinement would only multiply the elements (up to 8 000 fit), so it is off unless asked;
-  // element values are compared, so no direct light is cast to the vertices.
+/// Plain, ambient and overshooting progressive refinement, Jacobi and Gauss–Seidel on one
+/// uniform mesh's factors, one thread each; element values shown through vertexRadiosity.
+std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const std::vector<ReferencePoint>& points) {
   SolverBlock flags = o.flags;
-  if (!flags.adaptive) flags.adaptive = false;
+  flags.adaptive = false;
   flags.vertexDirect = false;
-  SolvableScene solvable = loadSolvable(o.scene, flags);
-  const auto& [scene, settings, mesh, direct, adaptive, base] = solvable;
-  SolverOptions options = solverOptions(settings);
-  // One worker, so that every method's time is single-threaded and comparable.
-  std::unique_ptr<HemicubeFactors> hemicubes = hemicubeFactors(solvable, 1);
-  HemicubeFactors& factors = *hemicubes;
-
+  SolvableScene solvable = meshScene(std::move(scene), flags, true);
+  const PatchMesh& mesh = solvable.mesh;
+  const TrueError truth(mesh, solvable.scene, points);
+  SolverOptions options = solverOptions(solvable.settings);
+  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 1);
   auto t0 = std::chrono::steady_clock::now();
-  TransportMatrix system(mesh, factors, options);
-  double matrixSeconds = seconds(t0);
-  std::vector<glm::dvec3> reference = system.solveDirect();
-  std::fprintf(stderr, "radiosity: %d elements, %zu patches; matrix %.2f s, direct solve %.2f s\n",
-               mesh.elementCount(), mesh.patches.size(), matrixSeconds, seconds(t0) - matrixSeconds);
-
+  TransportMatrix system(mesh, *factors, options);
+  const double matrixSeconds = seconds(t0);
   SolverOptions overshooting = options;
   overshooting.overshoot = o.flags.overshoot.value_or(kOvershootCurve);
   options.overshoot = 1;  // the plain curves shoot plainly, whatever the settings say
-  std::vector<Curve> curves;
-  curves.push_back(progressiveCurve("progressive", mesh, factors, options, false, reference));
-  curves.push_back(progressiveCurve("progressive + ambient", mesh, factors, options, true, reference));
-  char name[64];
+  char name[80];
   std::snprintf(name, sizeof name, "overshooting w=%.2g", overshooting.overshoot);
-  curves.push_back(progressiveCurve(name, mesh, factors, overshooting, false, reference));
-  curves.push_back(gatheringCurve("Jacobi", system, matrixSeconds, false, mesh, reference));
-  curves.push_back(gatheringCurve("Gauss-Seidel", system, matrixSeconds, true, mesh, reference));
+  std::vector<Curve> curves;
+  curves.push_back(progressiveCurve("progressive", mesh, *factors, options, false, truth));
+  curves.push_back(progressiveCurve("progressive + ambient", mesh, *factors, options, true, truth));
+  curves.push_back(progressiveCurve(name, mesh, *factors, overshooting, false, truth));
+  curves.push_back(gatheringCurve("Jacobi", system, matrixSeconds, false, mesh, truth));
+  curves.push_back(gatheringCurve("Gauss-Seidel", system, matrixSeconds, true, mesh, truth));
+  std::fprintf(stderr, "radiosity: variants on %d uniform elements (one thread; matrix %.2f s)\n",
+               mesh.elementCount(), matrixSeconds);
+  return curves;
+}
+
+/// A rung of the accuracy ladder: a name and the flags it changes from the user's.
+struct Rung {
+  std::string name;
+  SolverBlock flags;
+};
+
+std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
+  const Settings defaults = resolveSettings(scene, user);
+  const double edge = defaults.maxElementEdge;
+  std::vector<Rung> rungs;
+  auto add = [&](const std::string& name, auto change) {
+    Rung r{name, user};
+    change(r.flags);
+    rungs.push_back(r);
+  };
+  add("defaults", [](SolverBlock&) {});
+  add("adaptive off", [](SolverBlock& f) { f.adaptive = false; });
+  add("elements x1.6", [&](SolverBlock& f) { f.maxElementEdge = edge * 1.6; });
+  add("elements /1.6", [&](SolverBlock& f) { f.maxElementEdge = edge / 1.6; });
+  add("hemicube R/2", [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution / 2; });
+  add("hemicube Rx2", [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution * 2; });
+  add("4 points per patch", [&](SolverBlock& f) { f.shooterSamples = 4 * defaults.shooterSamples; });
+  add("emitter points /4", [&](SolverBlock& f) { f.emitterSamples = std::max(1, defaults.emitterSamples / 4); });
+  return rungs;
+}
+
+/// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays
+/// and refinement; the error of what a viewer shows at each history row.
+Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points) {
+  Curve c{{rung.name, {}}, {}};
+  SolverBlock flags = rung.flags;
+  if (!flags.tolerance) flags.tolerance = kLadderTolerance;
+  auto t0 = std::chrono::steady_clock::now();
+  SolvableScene solvable = meshScene(scene, flags, true);
+  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 0);
+  const double meshing = seconds(t0);
+  const TrueError truth(solvable.mesh, solvable.scene, points);
+  ProgressiveSolver solver(solvable.mesh, *factors, solverOptions(solvable.settings));
+  long next = 1;
+  while (solver.step()) {
+    if (solver.shots() < next) continue;
+    next = std::max(next + 1, long(next * kRowGrowth));
+    c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solver, solvable, truth).rms});
+    c.steps.push_back(solver.shots());
+  }
+  c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solver, solvable, truth).rms});
+  c.steps.push_back(solver.shots());
+  std::fprintf(stderr, "  %-20s %6d elements, meshing %.2f s, %.2f s in all, true error %.2f %%\n",
+               rung.name.c_str(), solvable.mesh.elementCount(), meshing, c.series.points.back().first,
+               100 * c.series.points.back().second);
+  return c;
+}
+
+/// The lowest error reached by any ladder curve by each time: the fastest setting per error.
+Curve front(const std::vector<Curve>& curves) {
+  std::vector<std::pair<double, double>> all;
+  for (const auto& c : curves) all.insert(all.end(), c.series.points.begin(), c.series.points.end());
+  std::sort(all.begin(), all.end());
+  Curve f{{"front (ladder)", {}}, {}};
+  double best = HUGE_VAL;
+  for (const auto& [t, e] : all)
+    if (e < best) best = e, f.series.points.push_back({t, e}), f.steps.push_back(0);
+  return f;
+}
+
+void runConvergence(const ConvergenceOptions& o) {
+  checkOutputPath(o.output);
+  if (!o.csv.empty()) checkOutputPath(o.csv);
+  const std::vector<ReferencePoint> points = readReferenceFile(o.reference).points;
+  Scene scene = loadScene(o.scene);
+  if (!scene.hasEmitter())
+    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission", "none");
+  printWarnings(scene.warnings);
+
+  std::vector<std::pair<std::string, Curve>> curves;  // (group, curve)
+  if (o.variants)
+    for (auto& c : variantCurves(o, scene, points)) curves.push_back({"variant", std::move(c)});
+  if (o.ladder) {
+    std::fprintf(stderr, "radiosity: accuracy ladder (as 'radiosity solve' runs, to unshot %g)\n", kLadderTolerance);
+    std::vector<Curve> rungs;
+    for (const Rung& r : ladder(o.flags, scene)) rungs.push_back(ladderCurve(r, scene, points));
+    Curve f = front(rungs);
+    for (auto& c : rungs) curves.push_back({"ladder", std::move(c)});
+    curves.push_back({"front", std::move(f)});
+  }
 
   std::vector<Series> series;
   std::ostringstream csv;
-  csv << "method,seconds,steps,error\n";
-  for (const auto& c : curves) {
+  csv << "group,name,seconds,steps,error\n";
+  for (const auto& [group, c] : curves) {
     series.push_back(c.series);
+    series.back().name = (group == "ladder" ? "ladder: " : "") + c.series.name;
     for (size_t i = 0; i < c.steps.size(); ++i)
-      csv << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
+      csv << group << "," << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
           << c.series.points[i].second << "\n";
   }
-  std::ostringstream title;
-  title << "Relative L2 error vs time, " << mesh.elementCount() << " elements";
-  std::string svg = svgLogPlot(title.str(), "seconds", "relative L2 error", series);
+  const std::string svg = svgLogPlot("True error (RMS relative, vs " + o.reference + ") against run time",
+                                     "seconds", "true error", series);
   writeFileAtomically(o.output, [&](std::ostream& out) { out << svg; });
   if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csv.str(); });
-  for (const auto& c : curves)
-    std::fprintf(stderr, "  %-24s error %.2e after %.2f s (%ld steps)\n", c.series.name.c_str(),
-                 c.series.points.back().second, c.series.points.back().first, c.steps.back());
+  for (const auto& [group, c] : curves)
+    std::fprintf(stderr, "  %-7s %-24s true error %.2f %% after %.2f s (%ld steps)\n", group.c_str(),
+                 c.series.name.c_str(), 100 * c.series.points.back().second, c.series.points.back().first,
+                 c.steps.back());
 }
 
 }  // namespace
@@ -154,14 +243,21 @@ void runConvergence(const ConvergenceOptions& o) {
 Command addConvergenceCommand(CLI::App& app) {
   auto o = std::make_shared<ConvergenceOptions>();
   CLI::App* sub = app.add_subcommand(
-      "convergence", "Plot relative L2 error against run time (SVG, and CSV) for progressive "
-                     "refinement, with the ambient term, with overshooting, Jacobi and Gauss-Seidel "
-                     "on the same hemicube factors, against the direct solution");
+      "convergence", "Plot the true error (against a reference from 'radiosity reference') against run "
+                     "time (SVG, and CSV): progressive refinement, with the ambient term, with "
+                     "overshooting, Jacobi and Gauss-Seidel on one uniform mesh, and a ladder of "
+                     "settings solved as 'radiosity solve' does, with its front");
   sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
+  sub->add_option("--reference", o->reference, "Reference CSV from 'radiosity reference' for this scene")->required();
   sub->add_option("-o,--output", o->output, "Plot (SVG)")->required();
-  sub->add_option("--csv", o->csv, "The data: method,seconds,steps,error");
+  sub->add_option("--csv", o->csv, "The data: group,name,seconds,steps,error");
+  sub->add_option("--tolerance", o->flags.tolerance,
+                  "The ladder's solves stop when unshot/emitted power falls below this (default 1e-4)")
+      ->check(CLI::Range(1e-300, 1.0));
   sub->add_option("--overshoot", o->flags.overshoot, "ω of the overshooting curve (default 1.3)")
       ->check(CLI::Range(1.0, 2.0));
+  sub->add_option("--variants", o->variants, "Run the solver variants on one mesh, true or false (default true)");
+  sub->add_option("--ladder", o->ladder, "Run the accuracy ladder of settings, true or false (default true)");
   addMeshFlags(*sub, o->flags);
   addSolverFlags(*sub, o->flags);
   return {sub, [o] { runConvergence(*o); }};

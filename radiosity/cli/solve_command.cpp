@@ -40,13 +40,6 @@ struct Measures {
   std::vector<glm::dvec3> fixedPoint;
 };
 
-/// The solution as baked: B without negative channels, and the ambient term while unconverged.
-struct Baked {
-  std::vector<glm::dvec3> B;
-  glm::dvec3 ambient{0.0};
-  int clamped = 0;
-};
-
 using Json = nlohmann::ordered_json;
 
 Json rgb(const glm::dvec3& c) { return Json::array({c.x, c.y, c.z}); }
@@ -57,34 +50,6 @@ const char* stopName(ProgressiveSolver::Stop s) {
     case ProgressiveSolver::Stop::TimeLimit: return "time_limit";
     default: return "tolerance";
   }
-}
-
-/// Overshooting can leave a slightly negative channel mid-solve; a result never carries one.
-/// With direct light from rays at the vertices, the emission not yet shot is already shown,
-/// so the ambient term leaves it out.
-Baked bake(const ProgressiveSolver& solver, bool directAtVertices) {
-  Baked b;
-  const bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
-  b.ambient = converged ? glm::dvec3(0.0) : glm::max(solver.ambient(directAtVertices), glm::dvec3(0.0));
-  b.B = solver.radiosity();
-  for (auto& x : b.B)
-    if (x.x < 0 || x.y < 0 || x.z < 0) {
-      ++b.clamped;
-      x = glm::max(x, glm::dvec3(0.0));
-    }
-  return b;
-}
-
-std::unique_ptr<VertexDirect> vertexDirect(const ProgressiveSolver& solver, const SolvableScene& s) {
-  if (!s.direct) return nullptr;
-  return std::make_unique<VertexDirect>(VertexDirect{solver.direct(), s.direct->radiosity(), s.base.get()});
-}
-
-/// The true error of what a viewer would show now.
-ErrorSummary trueErrorNow(const ProgressiveSolver& solver, const SolvableScene& s, const TrueError& truth) {
-  const Baked b = bake(solver, bool(s.direct));
-  const auto direct = vertexDirect(solver, s);
-  return truth.measure(shownVertexRadiosity(s.mesh, b.B, b.ambient, direct.get()));
 }
 
 Json historyRow(const ProgressiveSolver& solver, const SolvableScene& s, const Measures& m) {
@@ -295,6 +260,34 @@ void runSolve(const SolveOptions& o) {
 }
 
 }  // namespace
+
+// Overshooting can leave a slightly negative channel mid-solve; a result never carries one.
+// With direct light from rays at the vertices, the emission not yet shot is already shown,
+// so the ambient term leaves it out.
+Baked bake(const ProgressiveSolver& solver, bool directAtVertices) {
+  Baked b;
+  const bool converged = solver.stopReason() == ProgressiveSolver::Stop::Tolerance;
+  b.ambient = converged ? glm::dvec3(0.0) : glm::max(solver.ambient(directAtVertices), glm::dvec3(0.0));
+  b.B = solver.radiosity();
+  for (auto& x : b.B)
+    if (x.x < 0 || x.y < 0 || x.z < 0) {
+      ++b.clamped;
+      x = glm::max(x, glm::dvec3(0.0));
+    }
+  return b;
+}
+
+std::unique_ptr<VertexDirect> vertexDirect(const ProgressiveSolver& solver, const SolvableScene& s) {
+  if (!s.direct) return nullptr;
+  return std::make_unique<VertexDirect>(VertexDirect{solver.direct(), s.direct->radiosity(), s.base.get()});
+}
+
+/// The true error of what a viewer would show now.
+ErrorSummary trueErrorNow(const ProgressiveSolver& solver, const SolvableScene& s, const TrueError& truth) {
+  const Baked b = bake(solver, bool(s.direct));
+  const auto direct = vertexDirect(solver, s);
+  return truth.measure(shownVertexRadiosity(s.mesh, b.B, b.ambient, direct.get()));
+}
 
 Command addSolveCommand(CLI::App& app) {
   auto o = std::make_shared<SolveOptions>();
