@@ -73,9 +73,10 @@ class PathTracer {
 };
 
 /// Points placed on the non-emitting surfaces (both sides of two-sided ones): three quarters
-/// stratified by area, a quarter within a short distance (log-uniform, 0.1 % to 3 % of the
-/// scene's size) of the surfaces' edges and of the lines where other surfaces' edges lie on
-/// them (contact lines, where errors concentrate). Points inside solids (every direction
+/// stratified by area (tag "area"), an eighth within a short distance (log-uniform, 0.1 % to 3 %
+/// of the scene's size) of the surfaces' own edges ("edge") and an eighth as near the lines
+/// where other surfaces' edges lie on them ("contact": the foot of a wall or a block, where
+/// errors concentrate; their share goes to edges in a scene without contacts). Points inside solids (every direction
 /// ends on the back of a one-sided surface: the floor under a block) are not placed.
 std::vector<SurfacePoint> placePoints(const TraceScene& scene, int count, uint64_t seed);
 

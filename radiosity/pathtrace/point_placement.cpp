@@ -11,8 +11,8 @@
 namespace rad::pathtrace {
 namespace {
 
-/// Share of placed points near edges and contact lines.
-constexpr double kEdgeShare = 0.25;
+/// Shares of placed points near the surfaces' own edges and near contact lines.
+constexpr double kEdgeShare = 0.125, kContactShare = 0.125;
 /// Their distance from the edge: log-uniform between these (normalised units).
 constexpr double kNearest = 1e-3, kFarthest = 3e-2;
 /// An edge of another surface lies on a polygon when both ends are this close to its plane.
@@ -29,6 +29,7 @@ constexpr double kLocateTolerance = 1e-4;
 struct Segment {
   glm::dvec3 a{0.0}, b{0.0}, normal{0.0};
   int surface = -1;
+  bool contact = false;  ///< another surface's edge lying on this one
 };
 
 /// The polygon's plane: a point and the unit normal (Newell's), normalised coordinates.
@@ -86,7 +87,7 @@ std::vector<Segment> edgeSegments(const TraceScene& scene) {
       for (const auto& e : edges)
         if (e.surface != int(i) && std::abs(glm::dot(e.a - origin, n)) < kOnPlane &&
             std::abs(glm::dot(e.b - origin, n)) < kOnPlane)
-          out.push_back({e.a, e.b, n, int(i)});
+          out.push_back({e.a, e.b, n, int(i), true});
     }
   }
   return out;
@@ -149,8 +150,9 @@ void placeByArea(const TraceScene& scene, int count, Random& rng, std::vector<Su
   }
 }
 
-void placeNearEdges(const TraceScene& scene, int count, Random& rng, std::vector<SurfacePoint>& out) {
-  const std::vector<Segment> segments = edgeSegments(scene);
+/// Points near the given segments, tagged `tag`.
+void placeNear(const TraceScene& scene, const std::vector<Segment>& segments, int count, const char* tag,
+               Random& rng, std::vector<SurfacePoint>& out) {
   std::vector<double> cdf;
   double total = 0;
   for (const auto& s : segments) cdf.push_back(total += glm::length(s.b - s.a));
@@ -165,8 +167,8 @@ void placeNearEdges(const TraceScene& scene, int count, Random& rng, std::vector
       const double side = rng.next() < 0.5 ? 1 : -1;
       const bool twoSided = scene.twoSided(s.surface);
       const glm::dvec3 n = (twoSided && rng.next() < 0.5) ? -s.normal : s.normal;
-      if (accept(scene, along + side * d * across, n, s.surface, rng, out, "edge") ||
-          accept(scene, along - side * d * across, n, s.surface, rng, out, "edge"))
+      if (accept(scene, along + side * d * across, n, s.surface, rng, out, tag) ||
+          accept(scene, along - side * d * across, n, s.surface, rng, out, tag))
         break;
     }
 }
@@ -176,9 +178,13 @@ void placeNearEdges(const TraceScene& scene, int count, Random& rng, std::vector
 std::vector<SurfacePoint> placePoints(const TraceScene& scene, int count, uint64_t seed) {
   Random rng = Random::stream(seed, ~0ull);
   std::vector<SurfacePoint> out;
-  const int nearEdges = int(std::lround(count * kEdgeShare));
-  placeByArea(scene, count - nearEdges, rng, out);
-  placeNearEdges(scene, nearEdges, rng, out);
+  std::vector<Segment> edges, contacts;
+  for (const auto& s : edgeSegments(scene)) (s.contact ? contacts : edges).push_back(s);
+  const int nearContacts = contacts.empty() ? 0 : int(std::lround(count * kContactShare));
+  const int nearEdges = int(std::lround(count * (kEdgeShare + kContactShare))) - nearContacts;
+  placeByArea(scene, count - nearEdges - nearContacts, rng, out);
+  placeNear(scene, edges, nearEdges, "edge", rng, out);
+  placeNear(scene, contacts, nearContacts, "contact", rng, out);
   return out;
 }
 
