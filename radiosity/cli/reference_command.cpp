@@ -101,12 +101,12 @@ void runReference(const ReferenceOptions& o) {
     most = std::max(most, e.paths);
   }
   char buf[256];
-  file.header.push_back("radiosity reference: path tracing (next-event estimation, cosine-weighted bounces, "
-                        "Russian roulette), independent of the hemicube solver");
+  file.header.push_back("radiosity reference: path tracing (next-event estimation and cosine-weighted bounces "
+                        "combined by the power heuristic, Russian roulette), independent of the hemicube solver");
   file.header.push_back("scene: " + scene.path);
   file.header.push_back("seed: " + std::to_string(o.seed));
   file.header.push_back("points: " + std::to_string(points.size()) +
-                        (o.points.empty() ? " placed (3/4 by area, 1/4 near edges and contact lines)" : " from " + o.points));
+                        (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points));
   if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
   else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
                      o.relativeError, options.minPaths, options.maxPaths, capped);
