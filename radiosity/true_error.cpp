@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/error.h"
+
 namespace rad {
 namespace {
 
@@ -40,19 +42,21 @@ glm::dvec3 nearestWeights(const glm::dvec3& x, const glm::dvec3& a, const glm::d
 
 }  // namespace
 
-TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points)
+TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points,
+                     const std::string& source)
     : points_(std::move(points)), where_(points_.size()) {
   std::map<std::string, int> surfaceOf;
   for (size_t s = 0; s < scene.surfaces.size(); ++s) surfaceOf.emplace(scene.surfaces[s].name, int(s));
   std::vector<std::vector<int>> elementsOf(scene.surfaces.size());
   for (int e = 0; e < mesh.elementCount(); ++e) elementsOf[size_t(mesh.surface(e))].push_back(e);
-  std::vector<int> all(size_t(mesh.elementCount()));
-  for (int e = 0; e < mesh.elementCount(); ++e) all[size_t(e)] = e;
   const double reach = kOnResult * scene.diagonal();
   for (size_t i = 0; i < points_.size(); ++i) {
     const ReferencePoint& p = points_[i];
     const auto named = surfaceOf.find(p.surface);
-    const std::vector<int>& candidates = named != surfaceOf.end() ? elementsOf[size_t(named->second)] : all;
+    if (named == surfaceOf.end())
+      throw inputError(source + ": point " + std::to_string(i + 1), "a surface of " + scene.path,
+                       "'" + p.surface + "' (a reference of another scene?)");
+    const std::vector<int>& candidates = elementsOf[size_t(named->second)];
     double nearest = HUGE_VAL;
     for (int e : candidates) {
       if (glm::dot(mesh.normal(e), p.normal) < kFacing) continue;

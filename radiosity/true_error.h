@@ -40,8 +40,11 @@ struct ErrorSummary {
 /// Reference points located on a result mesh once, then measured against any vertex values.
 class TrueError {
  public:
-  /// Locates each point on the elements of its surface (by name) facing its way.
-  TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points);
+  /// Locates each point on the elements of its surface (by name) facing its way. Throws
+  /// InputError, naming `source` (the reference file), when a point names a surface the scene
+  /// does not have: a reference of another scene.
+  TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points,
+            const std::string& source = "reference");
 
   /// The error of the given vertex values (what Gouraud shading interpolates).
   ErrorSummary measure(const std::vector<glm::dvec3>& vertexValue) const;

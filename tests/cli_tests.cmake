@@ -141,3 +141,7 @@ cli_test(usage.contrast_range 2 "contrast" OUT/c.ply solve ${DATA}/good_small.js
 cli_test(usage.adaptive_not_bool 2 "adaptive" OUT/a.ply solve ${DATA}/good_small.json -o OUT/a.ply --adaptive maybe)
 cli_test(usage.min_edge_negative 2 "min-element-edge" OUT/m.ply
          solve ${DATA}/good_small.json -o OUT/m.ply --min-element-edge -1)
+cli_test(bad.solve_reference_other_scene 1 "ref.csv: point 1: expected a surface of .*parallel_squares.json, found '.*' .a reference of another scene..."
+         OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/r.ply --hemicube 32
+         --reference ${OUT_DIR}/reference.cube/ref.csv)
+set_tests_properties(cli.bad.solve_reference_other_scene PROPERTIES DEPENDS cli.reference.cube)

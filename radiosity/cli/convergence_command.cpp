@@ -105,12 +105,13 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
 /// Plain, ambient and overshooting progressive refinement, Jacobi and Gauss–Seidel on one
 /// uniform mesh's factors, one thread each; element values shown through vertexRadiosity.
 std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const std::vector<ReferencePoint>& points) {
+  const std::string& reference = o.reference;
   SolverBlock flags = o.flags;
   flags.adaptive = false;
   flags.vertexDirect = false;
   SolvableScene solvable = meshScene(std::move(scene), flags, true);
   const PatchMesh& mesh = solvable.mesh;
-  const TrueError truth(mesh, solvable.scene, points);
+  const TrueError truth(mesh, solvable.scene, points, reference);
   SolverOptions options = solverOptions(solvable.settings);
   std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 1);
   auto t0 = std::chrono::steady_clock::now();
@@ -160,7 +161,8 @@ std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
 
 /// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays
 /// and refinement; the error of what a viewer shows at each history row.
-Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points) {
+Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points,
+                  const std::string& reference) {
   Curve c{{rung.name, {}}, {}};
   SolverBlock flags = rung.flags;
   if (!flags.tolerance) flags.tolerance = kLadderTolerance;
@@ -168,7 +170,7 @@ Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<Refere
   SolvableScene solvable = meshScene(scene, flags, true);
   std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 0);
   const double meshing = seconds(t0);
-  const TrueError truth(solvable.mesh, solvable.scene, points);
+  const TrueError truth(solvable.mesh, solvable.scene, points, reference);
   ProgressiveSolver solver(solvable.mesh, *factors, solverOptions(solvable.settings));
   long next = 1;
   while (solver.step()) {
@@ -212,7 +214,7 @@ void runConvergence(const ConvergenceOptions& o) {
   if (o.ladder) {
     std::fprintf(stderr, "radiosity: accuracy ladder (as 'radiosity solve' runs, to unshot %g)\n", kLadderTolerance);
     std::vector<Curve> rungs;
-    for (const Rung& r : ladder(o.flags, scene)) rungs.push_back(ladderCurve(r, scene, points));
+    for (const Rung& r : ladder(o.flags, scene)) rungs.push_back(ladderCurve(r, scene, points, o.reference));
     Curve f = front(rungs);
     for (auto& c : rungs) curves.push_back({"ladder", std::move(c)});
     curves.push_back({"front", std::move(f)});

@@ -120,7 +120,7 @@ void runSolve(const SolveOptions& o) {
     measures.fixedPoint = TransportMatrix(mesh, factors, options).solveDirect();
   else if (!o.fixedPoint.empty())
     measures.fixedPoint = readResultRadiosity(o.fixedPoint, mesh, scene.diagonal());
-  if (!referencePoints.empty()) measures.truth = std::make_unique<TrueError>(mesh, scene, std::move(referencePoints));
+  if (!referencePoints.empty()) measures.truth = std::make_unique<TrueError>(mesh, scene, std::move(referencePoints), o.reference);
   ProgressiveSolver solver(mesh, factors, options);
 
   // Shoot, keeping the history and showing progress on a terminal.

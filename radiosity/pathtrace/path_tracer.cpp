@@ -12,8 +12,6 @@
 namespace rad::pathtrace {
 namespace {
 
-/// Rays start this far (normalised units: the scene's size is 1) off their surface.
-constexpr double kRayOffset = 1e-5;
 constexpr double kPi = 3.14159265358979323846;
 
 /// A cosine-weighted direction about unit n (Malley's method), in the orthonormal basis of

@@ -100,7 +100,7 @@ bool enclosed(const TraceScene& scene, const glm::dvec3& p, const glm::dvec3& n,
   for (int k = 0; k < kEnclosureRays; ++k) {
     const double r = std::sqrt(rng.next()), phi = 6.283185307179586 * rng.next();
     const glm::dvec3 w = r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1 - r * r)) * n;
-    const TraceHit hit = scene.intersect(p + 1e-5 * n, w, HUGE_VAL);
+    const TraceHit hit = scene.intersect(p + kRayOffset * n, w, HUGE_VAL);
     if (hit.triangle < 0 || hit.front || scene.twoSided(scene.triangles()[size_t(hit.triangle)].surface))
       return false;
   }

@@ -13,6 +13,10 @@
 
 namespace rad::pathtrace {
 
+/// Rays start this far (normalised units: the scene's size is 1) off their surface: about 170
+/// units in the last place of the single-precision coordinates Embree sees.
+constexpr double kRayOffset = 1e-5;
+
 /// One triangle of a surface polygon, in normalised coordinates.
 struct TraceTriangle {
   glm::dvec3 a{0.0}, b{0.0}, c{0.0};
@@ -38,7 +42,8 @@ struct LightSample {
 
 class TraceScene {
  public:
-  /// Triangulates every polygon of the scene and builds the ray-casting structure.
+  /// Triangulates every polygon of the scene and builds the ray-casting structure. The scene
+  /// must outlive it (materials are read from it).
   explicit TraceScene(const Scene& scene);
   ~TraceScene();
   TraceScene(const TraceScene&) = delete;
