@@ -2,14 +2,16 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
+#include <cmath>
+#include <filesystem>
 #include <map>
+#include <sstream>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <tiny_obj_loader.h>
 
 #include "mesh/error.h"
+#include "mesh/input_file.h"
+#include "mesh/ply_reader.h"
 
 namespace rad {
 namespace {
@@ -23,63 +25,171 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-std::vector<MeshFileGroup> readObj(const std::string& path, const std::string& where) {
+std::string trimmed(std::string s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  size_t start = 0;
+  while (start < s.size() && std::isspace(static_cast<unsigned char>(s[start]))) ++start;
+  return s.substr(start);
+}
+
+/// The text of every MTL file the OBJ names (`mtllib`), each read as an input file: tinyobj
+/// gets text, never a path it would open itself.
+std::string materialText(const std::string& obj, const std::string& path) {
+  std::istringstream lines(obj);
+  std::string line, text;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (int n = 1; std::getline(lines, line); ++n) {
+    std::istringstream words(line);
+    std::string word;
+    if (!(words >> word) || word != "mtllib") continue;
+    for (std::string name; words >> name;)
+      text += readInputFile((folder / name).string(), "the material file (MTL) that " + path + ": line " +
+                                                          std::to_string(n) + " names") + "\n";
+  }
+  return text;
+}
+
+glm::dvec3 finiteColour(const tinyobj::real_t* c, const std::string& where) {
+  const glm::dvec3 v(c[0], c[1], c[2]);
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw inputError(where, "finite numbers", "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " +
+                                                  std::to_string(v.z) + ")");
+  return v;
+}
+
+/// The face's corner k as a vertex index, checked against the vertices the file has.
+size_t objVertex(const tinyobj::index_t& index, size_t vertices, const std::string& where) {
+  const int64_t vi = index.vertex_index;
+  if (vi < 0 || uint64_t(vi) >= vertices)
+    throw inputError(where, "vertex indices within the " + std::to_string(vertices) + " vertices defined",
+                     "one outside them (" + std::to_string(vi + 1) + " counted from 1)");
+  return size_t(vi);
+}
+
+std::vector<MeshFileGroup> readObj(const std::string& path) {
+  const std::string obj = readInputFile(path, "a Wavefront OBJ file");
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // polygons stay polygons: the mesher triangulates them well
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string why = reader.Error();
-    while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.pop_back();
-    throw inputError(where + ": " + path, "a Wavefront OBJ file", "a parse error: " + why);
+  if (!reader.ParseFromString(obj, materialText(obj, path), config)) {
+    std::string why = trimmed(reader.Error());
+    throw inputError(path, "a Wavefront OBJ file", "a parse error: " + why);
   }
   const auto& attrib = reader.GetAttrib();
+  const size_t vertices = attrib.vertices.size() / 3;
+  for (size_t i = 0; i < attrib.vertices.size(); ++i)
+    if (!std::isfinite(attrib.vertices[i]))
+      throw inputError(path + ": vertex " + std::to_string(i / 3 + 1), "finite coordinates",
+                       std::to_string(attrib.vertices[i]));
   const auto& materials = reader.GetMaterials();
   std::map<int, MeshFileGroup> groups;  // by material id, -1 = none
   for (const auto& shape : reader.GetShapes()) {
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      int n = shape.mesh.num_face_vertices[f];
-      Polygon face;
-      for (int k = 0; k < n; ++k) {
-        int vi = shape.mesh.indices[offset + k].vertex_index;
-        face.outer.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
-                                attrib.vertices[3 * vi + 2]);
+      const std::string face = path + ": " + (shape.name.empty() ? "" : "object " + shape.name + ": ") +
+                               "face " + std::to_string(f + 1);
+      const size_t n = shape.mesh.num_face_vertices[f];
+      if (offset + n > shape.mesh.indices.size()) throw inputError(face, "its vertex indices", "fewer");
+      Polygon polygon;
+      for (size_t k = 0; k < n; ++k) {
+        const size_t vi = objVertex(shape.mesh.indices[offset + k], vertices, face);
+        polygon.outer.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
       }
       offset += n;
       int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      groups[mat].faces.push_back(std::move(face));
+      if (mat >= int(materials.size())) mat = -1;
+      groups[mat].faces.push_back(std::move(polygon));
     }
   }
   std::vector<MeshFileGroup> out;
   for (auto& [id, group] : groups) {
     if (id >= 0) {
-      const auto& m = materials[id];
+      const auto& m = materials[size_t(id)];
       group.material = m.name;
-      group.kd = glm::dvec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
-      group.ke = glm::dvec3(m.emission[0], m.emission[1], m.emission[2]);
+      group.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
+      group.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
     }
     out.push_back(std::move(group));
   }
   return out;
 }
 
-std::vector<MeshFileGroup> readWithOpenMesh(const std::string& path, const std::string& where) {
-  OpenMesh::PolyMesh_ArrayKernelT<> mesh;
-  OpenMesh::IO::Options options;
-  // OpenMesh prints its complaints on stderr; our error message says what went wrong.
-  omerr().disable();
-  bool ok = OpenMesh::IO::read_mesh(mesh, path, options);
-  omerr().enable();
-  if (!ok)
-    throw inputError(where + ": " + path, "a " + lowerExtension(path) + " mesh file",
-                     "a file OpenMesh cannot parse");
+/// A PLY mesh: its vertices' x, y, z and its faces.
+std::vector<MeshFileGroup> readPlyMesh(const std::string& path) {
+  const PlyPolygons ply = readPlyPolygons(path);
+  const PlyColumn* xyz[3] = {findColumn(ply.mesh.vertex, "x"), findColumn(ply.mesh.vertex, "y"),
+                             findColumn(ply.mesh.vertex, "z")};
+  if (!xyz[0] || !xyz[1] || !xyz[2]) throw inputError(path, "a vertex element with x, y and z", "none");
   MeshFileGroup group;
-  for (auto f : mesh.faces()) {
+  for (const auto& f : ply.faces) {
     Polygon face;
-    for (auto v : mesh.fv_range(f)) {
-      const auto& p = mesh.point(v);
-      face.outer.emplace_back(p[0], p[1], p[2]);
+    for (int v : f) face.outer.emplace_back(xyz[0]->values[size_t(v)], xyz[1]->values[size_t(v)], xyz[2]->values[size_t(v)]);
+    group.faces.push_back(std::move(face));
+  }
+  return {std::move(group)};
+}
+
+/// Words of an OFF file, '#' comments left out, each with its line for messages.
+class OffWords {
+ public:
+  OffWords(const std::string& text, const std::string& path) : in_(text), path_(path) {}
+  std::string where() const { return path_ + ": line " + std::to_string(line_); }
+  bool next(std::string& word) {
+    while (!(words_ >> word)) {
+      std::string line;
+      if (!std::getline(in_, line)) return false;
+      ++line_;
+      words_.clear();
+      words_.str(line.substr(0, line.find('#')));
     }
+    return true;
+  }
+  double number(const char* what) {
+    std::string word;
+    if (!next(word)) throw inputError(where(), what, "the end of the file (a truncated file)");
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(v)) throw inputError(where(), what, "'" + word + "'");
+    return v;
+  }
+  uint64_t count(const char* what, uint64_t most) {
+    const double v = number(what);
+    if (v < 0 || v != std::floor(v) || v > double(most))
+      throw inputError(where(), std::string(what) + " from 0 to " + std::to_string(most), std::to_string(v));
+    return uint64_t(v);
+  }
+  void skipLine() { words_.str(""), words_.clear(); }
+
+ private:
+  std::istringstream in_, words_;
+  std::string path_;
+  int line_ = 0;
+};
+
+/// An OFF file (Geomview): "OFF", the vertex, face and edge counts, x y z per vertex, then
+/// "n i1 … in" per face. Counts are checked against the file's size before anything else.
+std::vector<MeshFileGroup> readOff(const std::string& path) {
+  const std::string text = readInputFile(path, "an OFF file");
+  OffWords words(text, path);
+  std::string magic;
+  if (!words.next(magic) || magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
+    throw inputError(words.where(), "the 'OFF' keyword", magic.empty() ? "nothing" : "'" + magic + "'");
+  // Every vertex takes at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n").
+  const uint64_t vertices = words.count("a vertex count", text.size() / 6);
+  const uint64_t faces = words.count("a face count", text.size() / 8);
+  words.count("an edge count", UINT64_MAX >> 12);
+  std::vector<glm::dvec3> points(vertices);
+  for (auto& p : points) {
+    p = {words.number("a vertex x"), words.number("a vertex y"), words.number("a vertex z")};
+    words.skipLine();  // colours or normals after the position are not ours
+  }
+  MeshFileGroup group;
+  for (uint64_t f = 0; f < faces; ++f) {
+    const uint64_t n = words.count("a face's vertex count", kMaxPlyFaceVertices);
+    Polygon face;
+    for (uint64_t k = 0; k < n; ++k) face.outer.push_back(points[words.count("a vertex index", vertices - 1)]);
+    if (vertices == 0 && n > 0) throw inputError(words.where(), "vertex indices", "a face without vertices");
+    words.skipLine();  // a face colour may follow
     group.faces.push_back(std::move(face));
   }
   return {std::move(group)};
@@ -88,16 +198,17 @@ std::vector<MeshFileGroup> readWithOpenMesh(const std::string& path, const std::
 }  // namespace
 
 std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
-  if (!std::ifstream(path))
-    throw inputError(where, "a readable mesh file", "no file at " + path);
-  std::string ext = lowerExtension(path);
-  std::vector<MeshFileGroup> groups;
-  if (ext == "obj")
-    groups = readObj(path, where);
-  else if (ext == "ply" || ext == "off")
-    groups = readWithOpenMesh(path, where);
-  else
+  const std::string ext = lowerExtension(path);
+  if (ext != "obj" && ext != "ply" && ext != "off")
     throw inputError(where, "a mesh file ending in .obj, .ply or .off", path);
+  if (!std::filesystem::exists(path)) throw inputError(where, "a readable mesh file", "no file at " + path);
+  std::vector<MeshFileGroup> groups;
+  try {
+    inputFileSize(path, "a readable mesh file");  // a FIFO or a folder: say so before reading
+    groups = ext == "obj" ? readObj(path) : ext == "ply" ? readPlyMesh(path) : readOff(path);
+  } catch (const InputError& e) {
+    throw InputError(where + ": " + e.what());  // the scene's place, then the file's
+  }
   size_t faces = 0;
   for (const auto& g : groups) faces += g.faces.size();
   if (faces == 0)

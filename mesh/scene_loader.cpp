@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/error.h"
+#include "mesh/input_file.h"
 #include "mesh/geometry.h"
 #include "mesh/material_presets.h"
 #include "mesh/mesh_file.h"
@@ -584,13 +585,9 @@ Scene parseScene(const std::string& text, const std::string& path, const std::st
 }
 
 Scene loadScene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw inputError(path, "a readable scene file", "no such file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw inputError(path, "a readable scene file", "a read error");
+  const std::string text = readInputFile(path, "a readable scene file", kMaxSceneFileBytes);
   std::string base = std::filesystem::path(path).parent_path().string();
-  return parseScene(text.str(), path, base.empty() ? "." : base);
+  return parseScene(text, path, base.empty() ? "." : base);
 }
 
 }  // namespace rad

@@ -40,7 +40,7 @@ set(bad_cases
   zero_area            "surfaces.0..polygon: expected a polygon of non-zero area, found area 0"
   hole_outside         "surfaces.0..holes.0..0.: expected a hole vertex inside its polygon, found a point outside it"
   missing_mesh_file    "surfaces.2..mesh: expected a readable mesh file, found no file at .*no_such_statue.obj"
-  unparseable_mesh_file "surfaces.2..mesh: .*broken.off: expected a mesh file with faces, found none that parse"
+  unparseable_mesh_file "surfaces.2..mesh: .*broken.off: line 5: expected a vertex x, found 'this'"
   version_two          "version: expected version 1, found the number 2"
   bad_light_type       "lights.0..type: expected \"directional\", \"point\" or \"spot\", found the string \"area\""
   bad_fog_mode         "fog.mode: expected \"linear\", \"exp\" or \"exp2\", found the string \"thick\""
