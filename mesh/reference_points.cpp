@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "mesh/error.h"
+#include "mesh/input_file.h"
 #include "mesh/output_file.h"
 
 namespace rad {
@@ -85,8 +86,7 @@ void writeReferenceFile(const std::string& path, const ReferenceFile& file) {
 }
 
 ReferenceFile readReferenceFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw inputError(path, "a readable reference file (CSV)", "none could be opened");
+  std::istringstream in(readInputFile(path, "a readable reference file (CSV)"));
   ReferenceFile file;
   std::string line;
   int lineNo = 0;
@@ -113,7 +113,6 @@ ReferenceFile readReferenceFile(const std::string& path) {
                        std::to_string(f.size()));
     file.points.push_back(parsePoint(f, where));
   }
-  if (in.bad()) throw inputError(path, "a readable reference file", "a read error");
   if (!columns) throw inputError(path, "a reference file (CSV with the column line)", "none");
   if (file.points.empty()) throw inputError(path, "at least one reference point", "none");
   return file;

@@ -94,6 +94,7 @@ struct SolverBlock {
   std::optional<unsigned> seed;
   std::optional<bool> cutContacts, adaptive, vertexDirect;
   std::optional<double> minElementEdge, contrast;
+  std::optional<long> maxElements;
 };
 
 struct Scene {

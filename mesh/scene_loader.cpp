@@ -1,6 +1,7 @@
 // Reads and validates the version-1 scene file of DESIGN.md.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -486,7 +487,7 @@ class SceneReader {
                     "emitter_hemicube_resolution", "tolerance",
                     "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                     "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts",
-                    "adaptive", "min_element_edge", "contrast", "vertex_direct"});
+                    "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements"});
     SolverBlock& b = scene_.solver;
     if (n.has("max_element_edge"))
       b.maxElementEdge = n["max_element_edge"].number(1e-300, HUGE_VAL, "(0, inf)");
@@ -514,6 +515,12 @@ class SceneReader {
       if (x != std::floor(x)) m.fail("a whole number");
       *slot = int(x);
     }
+    if (n.has("max_elements")) {
+      Node m = n["max_elements"];
+      double x = m.number(1, 1e12, "[1, 1e12]");
+      if (x != std::floor(x)) m.fail("a whole number");
+      b.maxElements = long(x);
+    }
     if (n.has("max_shots")) {
       Node m = n["max_shots"];
       double x = m.number(1, 1e15, "[1, 1e15]");
@@ -539,6 +546,30 @@ class SceneReader {
   Scene& scene_;
   std::string file_, baseDir_;
 };
+
+/// Coordinates beyond this magnitude (scene units) are refused: squared areas and the
+/// mesher's predicates overflow double precision long before 1e77.
+constexpr double kMaxCoordinate = 1e15;
+/// A scene smaller than this (its bounding box's diagonal, scene units) is refused: squared
+/// lengths would fall into denormals.
+constexpr double kMinSceneSize = 1e-12;
+
+/// Every point within ±kMaxCoordinate and the scene no smaller than kMinSceneSize.
+void checkScale(const Scene& scene) {
+  for (const auto& s : scene.surfaces)
+    for (const auto& p : s.polygons)
+      for (const auto& q : p.outer)
+        if (std::abs(q.x) > kMaxCoordinate || std::abs(q.y) > kMaxCoordinate || std::abs(q.z) > kMaxCoordinate) {
+          char found[96];
+          std::snprintf(found, sizeof found, "the point (%g, %g, %g)", q.x, q.y, q.z);
+          throw inputError(s.where + " (" + s.name + ")",
+                           "coordinates within ±1e15 scene units (choose larger units or scale the surface down)",
+                           found);
+        }
+  if (!scene.surfaces.empty() && !(scene.diagonal() >= kMinSceneSize))
+    throw inputError(scene.path + ": surfaces", "a scene at least 1e-12 scene units across (choose smaller units)",
+                     "one " + std::to_string(scene.diagonal()) + " across");
+}
 
 }  // namespace
 
@@ -581,6 +612,7 @@ Scene parseScene(const std::string& text, const std::string& path, const std::st
   scene.path = path;
   SceneReader reader(scene, path, baseDir);
   reader.read(root);
+  checkScale(scene);
   return scene;
 }
 

@@ -1,6 +1,19 @@
 #include "mesh/settings.h"
 
+#include <cmath>
+#include <cstdio>
+
+#include "mesh/error.h"
+#include "mesh/geometry.h"
+
 namespace rad {
+
+double estimateElements(const Scene& scene, double edge) {
+  double area = 0;
+  for (const auto& s : scene.surfaces)
+    for (const auto& p : s.polygons) area += polygonArea(p) * (s.twoSided ? 2 : 1);
+  return area / (std::sqrt(3.0) / 4 * edge * edge);
+}
 
 Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   const SolverBlock& file = scene.solver;
@@ -33,6 +46,17 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   s.proximitySamples =
       pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
+  s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
+  // Refuse before meshing what would not fit: a user who asks for 1e9 elements learns it now.
+  const double estimate = estimateElements(scene, s.maxElementEdge);
+  if (!(estimate <= double(s.maxElements))) {
+    char found[160];
+    std::snprintf(found, sizeof found, "%g (about %.3g elements)", s.maxElementEdge, estimate);
+    throw inputError(scene.path + ": max_element_edge (--max-element-edge)",
+                     "an element edge giving at most " + std::to_string(s.maxElements) +
+                         " elements (raise the edge, or the cap with --max-elements / solver.max_elements)",
+                     found);
+  }
   return s;
 }
 

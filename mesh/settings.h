@@ -33,6 +33,9 @@ constexpr double kDefaultMinElementRatio = 4;
 /// Default contrast threshold of adaptive refinement, in display units (the sRGB-encoded
 /// value in [0, 1] of the exposed radiosity): about five of 255 display levels.
 constexpr double kDefaultContrast = 0.02;
+/// Default cap on elements (meshing and refinement): about 14 GiB at the ~7 KiB per element a
+/// solve takes (45 000 elements: 328 MiB peak), within this 24 GiB machine class.
+constexpr long kDefaultMaxElements = 2'000'000;
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
 
@@ -59,13 +62,21 @@ struct Settings {
   double contrast = kDefaultContrast;  ///< display units
   /// Show direct light computed at the vertices by rays (radiosity/direct_light.h).
   bool vertexDirect = true;
+  /// Meshing is refused beyond this many elements (estimated before meshing), and adaptive
+  /// refinement stops there.
+  long maxElements = kDefaultMaxElements;
 
   MeshSettings mesh() const {
     return {maxElementEdge, maxPatchEdge, cutContacts, adaptive ? 1.0 : kDefaultContactGrading};
   }
 };
 
-/// Merges `flags` over `scene.solver` over the defaults.
+/// Merges `flags` over `scene.solver` over the defaults. Throws InputError when the element
+/// edge would need more than maxElements elements (estimated from the scene's area).
 Settings resolveSettings(const Scene& scene, const SolverBlock& flags);
+
+/// Elements a uniform mesh of the scene with edges of at most `edge` has, about: its area
+/// (both sides of two-sided surfaces) over the area of an equilateral triangle of that edge.
+double estimateElements(const Scene& scene, double edge);
 
 }  // namespace rad

@@ -157,6 +157,11 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   MidpointLight midpoints;
   stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
   for (int round = 0; round < options.maxRounds && light.enabled(); ++round) {
+    if (options.maxElements > 0 && mesh.elementCount() >= options.maxElements) {
+      mesh.warnings.push_back("adaptive refinement stopped at " + std::to_string(mesh.elementCount()) +
+                              " elements, the cap (raise --max-elements / solver.max_elements)");
+      break;
+    }
     std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
@@ -211,6 +216,7 @@ void addDirectLight(SceneMesh& s, const Scene& scene, const Settings& settings) 
   if (settings.adaptive) {
     AdaptiveOptions options;
     options.minElementEdge = settings.minElementEdge;
+    options.maxElements = settings.maxElements;
     options.contrast = settings.contrast;
     options.exposure = settings.exposure.value_or(0.0);
     auto base = std::make_unique<PatchMesh>(s.mesh);

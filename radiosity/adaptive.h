@@ -20,6 +20,7 @@ struct AdaptiveOptions {
   double contrast = kDefaultContrast;
   double exposure = 0;            ///< 0: estimated from the direct light (estimateExposure)
   int maxRounds = 64;
+  long maxElements = 0;           ///< refinement stops once the mesh has this many (0: no cap)
 };
 
 struct AdaptiveStats {

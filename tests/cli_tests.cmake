@@ -120,7 +120,7 @@ cli_test(bad.solve_reference_ply 1 "--reference direct: expected a reference CSV
          OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference direct)
 cli_test(bad.solve_reference_columns 1 "bad_reference.csv: line 3: expected 15 comma-separated columns, found 3"
          OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference ${DATA}/bad/bad_reference.csv)
-cli_test(bad.solve_reference_missing 1 "no_such.csv: expected a readable reference file .CSV., found none could be opened"
+cli_test(bad.solve_reference_missing 1 "no_such.csv: expected a readable reference file .CSV., found no such file"
          OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.ply --reference ${DATA}/no_such.csv)
 cli_test(bad.reference_points_line 1 "bad_points.txt: line 2: expected x y z nx ny nz .tag., six finite numbers, found '0.5 0 0.5 0 1'"
          OUT/r.csv reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.csv --points ${DATA}/bad/bad_points.txt)

@@ -31,6 +31,10 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
                  "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
                  "across an element (solver.contrast; default 0.02)")
       ->check(CLI::Range(1e-6, 1.0));
+  app.add_option("--max-elements", flags.maxElements,
+                 "Refuse meshes of more elements than this, estimated before meshing; adaptive "
+                 "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)")
+      ->check(CLI::Range(1L, 1'000'000'000'000L));
   app.add_option("--vertex-direct", flags.vertexDirect,
                  "Show direct light computed at the vertices by rays to points on the emitters, "
                  "true or false (solver.vertex_direct; default true)");

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "mesh/error.h"
+#include "mesh/input_file.h"
 #include "mesh/output_file.h"
 #include "mesh/reference_points.h"
 #include "radiosity/cli/commands.h"
@@ -32,8 +33,7 @@ struct ReferenceOptions {
 
 /// Reads `x y z nx ny nz [tag]` lines ('#' starts a comment) and finds each point's surface.
 std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const pathtrace::TraceScene& scene) {
-  std::ifstream in(path);
-  if (!in) throw inputError(path, "a readable points file", "none could be opened");
+  std::istringstream in(readInputFile(path, "a readable points file"));
   std::vector<pathtrace::SurfacePoint> out;
   std::string line;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {

@@ -178,6 +178,7 @@ void runSolve(const SolveOptions& o) {
   s["min_element_edge"] = settings.minElementEdge;
   s["contrast"] = settings.contrast;
   s["vertex_direct"] = settings.vertexDirect;
+  s["max_elements"] = settings.maxElements;
   report["settings"] = s;
   // What refinement did, and the rays behind it and behind the direct light shown.
   report["adaptive"] = {{"rounds", adaptive.rounds},
