@@ -32,17 +32,25 @@ uint64_t inputFileSize(const std::string& path, const std::string& what, uint64_
   return size;
 }
 
-std::string readInputFile(const std::string& path, const std::string& what, uint64_t maxBytes, bool text) {
+std::string readInputFile(const std::string& path, const std::string& what, uint64_t maxBytes, bool text,
+                          const std::function<void(const std::string&)>& checkHead) {
   const uint64_t size = inputFileSize(path, what, maxBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw inputError(path, what, "a file that cannot be opened");
-  std::string bytes(size_t(size), '\0');
-  in.read(bytes.data(), std::streamsize(size));
-  if (size_t(in.gcount()) != size) throw inputError(path, what, "a read error");
-  if (text)
-    if (const void* nul = std::memchr(bytes.data(), '\0', bytes.size()))
-      throw inputError(path, what + " (text)", "a NUL byte at offset " +
-                                                   std::to_string(static_cast<const char*>(nul) - bytes.data()));
+  auto readMore = [&](std::string& bytes, size_t upTo) {
+    const size_t from = bytes.size();
+    bytes.resize(upTo);
+    in.read(bytes.data() + from, std::streamsize(upTo - from));
+    if (size_t(in.gcount()) != upTo - from) throw inputError(path, what, "a read error");
+    if (text)
+      if (const void* nul = std::memchr(bytes.data() + from, '\0', upTo - from))
+        throw inputError(path, what + " (text)", "a NUL byte at offset " +
+                                                     std::to_string(static_cast<const char*>(nul) - bytes.data()));
+  };
+  std::string bytes;
+  readMore(bytes, size_t(std::min<uint64_t>(size, kInputHeadBytes)));
+  if (checkHead) checkHead(bytes);
+  readMore(bytes, size_t(size));
   return bytes;
 }
 

@@ -3,6 +3,7 @@
 // files are read (a FIFO, a device or a folder is an error, not a wait), and sizes are checked
 // before anything is allocated.
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace rad {
@@ -17,8 +18,15 @@ constexpr uint64_t kMaxInputFileBytes = uint64_t(4) << 30;
 uint64_t inputFileSize(const std::string& path, const std::string& what,
                        uint64_t maxBytes = kMaxInputFileBytes);
 
+/// The first bytes read and checked before the rest (a zero-filled or foreign file of
+/// gigabytes fails at once).
+constexpr size_t kInputHeadBytes = 64 << 10;
+
 /// The whole of a regular file, checked as above; a text file (`text`) must hold no NUL byte.
+/// `checkHead`, if given, sees the first kInputHeadBytes (or the whole of a smaller file) before
+/// the rest is read, and throws if they are not the file's kind.
 std::string readInputFile(const std::string& path, const std::string& what,
-                          uint64_t maxBytes = kMaxInputFileBytes, bool text = true);
+                          uint64_t maxBytes = kMaxInputFileBytes, bool text = true,
+                          const std::function<void(const std::string& head)>& checkHead = {});
 
 }  // namespace rad

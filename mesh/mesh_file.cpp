@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -32,6 +33,47 @@ std::string trimmed(std::string s) {
   return s.substr(start);
 }
 
+/// A finite number filling the whole word, or false.
+bool finiteNumber(const std::string& word, double& v) {
+  char* end = nullptr;
+  v = std::strtod(word.c_str(), &end);
+  return !word.empty() && *end == '\0' && std::isfinite(v);
+}
+
+/// Checks the lines tinyobjloader would read leniently (it turns "nan" into 0 and clamps
+/// indices): numbers after `v` and the colour keys of MTL are finite, and every face index
+/// names a vertex defined before it (1-based, or negative counting back), line by line.
+void checkObjText(const std::string& text, const std::string& path, bool material) {
+  std::istringstream lines(text);
+  std::string line;
+  long long vertices = 0;
+  for (int n = 1; std::getline(lines, line); ++n) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::string key, word;
+    if (!(words >> key)) continue;
+    const std::string where = path + ": line " + std::to_string(n);
+    const bool numbers = material ? (key == "Kd" || key == "Ke" || key == "Ka" || key == "Ks" || key == "Ni" ||
+                                     key == "Ns" || key == "d" || key == "Tr")
+                                  : (key == "v" || key == "vn" || key == "vt");
+    if (numbers) {
+      for (double v; words >> word;)
+        if (!finiteNumber(word, v)) throw inputError(where, "finite numbers after '" + key + "'", "'" + word + "'");
+      vertices += key == "v";
+      continue;
+    }
+    if (material || (key != "f" && key != "l" && key != "p")) continue;
+    while (words >> word) {
+      const std::string first = word.substr(0, word.find('/'));
+      char* end = nullptr;
+      errno = 0;
+      const long long i = std::strtoll(first.c_str(), &end, 10);
+      if (first.empty() || *end != '\0' || errno == ERANGE || i == 0 || i > vertices || -i > vertices)
+        throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
+                                    std::to_string(vertices) + ", counting back)", "'" + first + "'");
+    }
+  }
+}
+
 /// The text of every MTL file the OBJ names (`mtllib`), each read as an input file: tinyobj
 /// gets text, never a path it would open itself.
 std::string materialText(const std::string& obj, const std::string& path) {
@@ -42,9 +84,13 @@ std::string materialText(const std::string& obj, const std::string& path) {
     std::istringstream words(line);
     std::string word;
     if (!(words >> word) || word != "mtllib") continue;
-    for (std::string name; words >> name;)
-      text += readInputFile((folder / name).string(), "the material file (MTL) that " + path + ": line " +
-                                                          std::to_string(n) + " names") + "\n";
+    for (std::string name; words >> name;) {
+      const std::string file = (folder / name).string();
+      const std::string mtl = readInputFile(file, "the material file (MTL) that " + path + ": line " +
+                                                      std::to_string(n) + " names");
+      checkObjText(mtl, file, true);
+      text += mtl + "\n";
+    }
   }
   return text;
 }
@@ -68,6 +114,7 @@ size_t objVertex(const tinyobj::index_t& index, size_t vertices, const std::stri
 
 std::vector<MeshFileGroup> readObj(const std::string& path) {
   const std::string obj = readInputFile(path, "a Wavefront OBJ file");
+  checkObjText(obj, path, false);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // polygons stay polygons: the mesher triangulates them well
   tinyobj::ObjReader reader;
@@ -145,24 +192,22 @@ class OffWords {
     return true;
   }
   double number(const char* what) {
-    std::string word;
-    if (!next(word)) throw inputError(where(), what, "the end of the file (a truncated file)");
-    char* end = nullptr;
-    const double v = std::strtod(word.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(v)) throw inputError(where(), what, "'" + word + "'");
+    if (!next(word_)) throw inputError(where(), what, "the end of the file (a truncated file)");
+    double v;
+    if (!finiteNumber(word_, v)) throw inputError(where(), what, "'" + word_ + "'");
     return v;
   }
   uint64_t count(const char* what, uint64_t most) {
     const double v = number(what);
     if (v < 0 || v != std::floor(v) || v > double(most))
-      throw inputError(where(), std::string(what) + " from 0 to " + std::to_string(most), std::to_string(v));
+      throw inputError(where(), std::string(what) + " from 0 to " + std::to_string(most), "'" + word_ + "'");
     return uint64_t(v);
   }
   void skipLine() { words_.str(""), words_.clear(); }
 
  private:
   std::istringstream in_, words_;
-  std::string path_;
+  std::string path_, word_;
   int line_ = 0;
 };
 

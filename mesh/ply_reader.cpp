@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -243,9 +244,12 @@ PlyPolygons readBody(const std::string& bytes, const Header& h, const std::strin
         for (size_t k = 0; k < n; ++k) {
           const double v = body.scalar(p.type, where);
           if (!face) continue;
-          if (v < 0 || v >= double(vertices) || v != std::floor(v))
-            throw inputError(where, "vertex indices from 0 to " + std::to_string(vertices) + " - 1",
-                             std::to_string(v));
+          if (v < 0 || v >= double(vertices) || v != std::floor(v)) {
+            char found[32];
+            std::snprintf(found, sizeof found, "%.17g", v);
+            throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
+                                             : std::string("no face (the file has no vertices)"), found);
+          }
           idx[k] = int(v);
         }
         if (face) out.faces.push_back(std::move(idx));
@@ -253,6 +257,12 @@ PlyPolygons readBody(const std::string& bytes, const Header& h, const std::strin
     }
   }
   return out;
+}
+
+/// A PLY file starts with its magic line.
+void checkMagic(const std::string& head, const std::string& path) {
+  if (head.compare(0, 4, "ply\n") != 0 && head.compare(0, 5, "ply\r\n") != 0)
+    throw inputError(path, "a PLY file", "no 'ply' magic line");
 }
 
 }  // namespace
@@ -264,13 +274,15 @@ const PlyColumn* findColumn(const std::vector<PlyColumn>& columns, const std::st
 }
 
 PlyPolygons readPlyPolygons(const std::string& path) {
-  const std::string bytes = readInputFile(path, "a PLY file", kMaxInputFileBytes, false);
+  const std::string bytes = readInputFile(path, "a PLY file", kMaxInputFileBytes, false,
+                                          [&](const std::string& head) { checkMagic(head, path); });
   const Header header = parseHeader(bytes, path);
   return readBody(bytes, header, path);
 }
 
 PlyMesh readPly(const std::string& path) {
-  const std::string bytes = readInputFile(path, "a readable PLY file", kMaxInputFileBytes, false);
+  const std::string bytes = readInputFile(path, "a readable PLY file", kMaxInputFileBytes, false,
+                                          [&](const std::string& head) { checkMagic(head, path); });
   const Header header = parseHeader(bytes, path);
   if (header.format != Format::BinaryLittleEndian)
     throw inputError(path, "binary_little_endian PLY",

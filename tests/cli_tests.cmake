@@ -46,7 +46,19 @@ set(bad_cases
   bad_fog_mode         "fog.mode: expected \"linear\", \"exp\" or \"exp2\", found the string \"thick\""
   bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\""
   bad_contrast         "solver.contrast: expected a number in .1e-6, 1., found the number 5"
-  bad_adaptive         "solver.adaptive: expected true or false, found the string \"yes\"")
+  bad_adaptive         "solver.adaptive: expected true or false, found the string \"yes\""
+  obj_index_past_end   "surfaces.2..mesh: .*obj_index_past_end.obj: line 4: expected vertex indices from 1 to 3 .or -1 to -3, counting back., found '9'"
+  obj_index_before_start "surfaces.2..mesh: .*obj_index_before_start.obj: line 4: expected vertex indices from 1 to 3 .*found '-9'"
+  obj_index_int_max    "surfaces.2..mesh: .*obj_index_int_max.obj: line 4: expected vertex indices from 1 to 3 .*found '2147483647'"
+  obj_index_int_min    "surfaces.2..mesh: .*obj_index_int_min.obj: line 4: expected vertex indices from 1 to 3 .*found '-2147483648'"
+  obj_nan_vertex       "surfaces.2..mesh: .*obj_nan_vertex.obj: line 2: expected finite numbers after 'v', found 'nan'"
+  obj_nan_emission     "surfaces.2..mesh: .*obj_nan_emission.mtl: line 3: expected finite numbers after 'Ke', found 'nan'"
+  off_billions         "surfaces.2..mesh: .*off_billions.off: line 2: expected a vertex count from 0 to 4, found '4000000000'"
+  off_index_past_end   "surfaces.2..mesh: .*off_index_past_end.off: line 6: expected a vertex index from 0 to 2, found '7'"
+  ply_billions         "surfaces.2..mesh: .*ply_billions.ply: element vertex: expected at most the 3 records the file's size allows, found 4000000000 announced"
+  ply_bad_header       "surfaces.2..mesh: .*ply_bad_header.ply: expected a property with PLY scalar types .*found 'property list uchar float'"
+  ply_index_past_end   "surfaces.2..mesh: .*ply_index_past_end.ply: face 0: vertex_indices: expected vertex indices from 0 to 2, found 3"
+  huge_polygon         "surfaces.0. .floor.: expected coordinates within ±1e15 scene units .*found the point .0, 0, 1e.77.")
 while(bad_cases)
   list(POP_FRONT bad_cases case regex)
   cli_test(bad.${case} 1 "radiosity: error: .*${case}.json: ${regex}" OUT/${case}.ply
@@ -145,3 +157,30 @@ cli_test(bad.solve_reference_other_scene 1 "ref.csv: point 1: expected a surface
          OUT/r.ply solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/r.ply --hemicube 32
          --reference ${OUT_DIR}/reference.cube/ref.csv)
 set_tests_properties(cli.bad.solve_reference_other_scene PROPERTIES DEPENDS cli.reference.cube)
+
+# Hostile files: FIFOs and a 2 GiB zero-filled file are refused at once, naming the file.
+set(HOSTILE ${OUT_DIR}/hostile)
+add_test(NAME cli.hostile_files COMMAND ${CMAKE_COMMAND} -DDIR=${HOSTILE} -DSOURCE=${PROJECT_SOURCE_DIR}
+         -P ${CMAKE_CURRENT_SOURCE_DIR}/hostile_files.cmake)
+set_tests_properties(cli.hostile_files PROPERTIES FIXTURES_SETUP hostile_files)
+cli_test(bad.scene_fifo 1 "scene.fifo: expected a readable scene file .a regular file., found a FIFO .named pipe."
+         OUT/f.ply mesh ${HOSTILE}/scene.fifo -o OUT/f.ply)
+cli_test(bad.scene_folder 1 "bad: expected a readable scene file .a regular file., found a folder"
+         OUT/f.ply mesh ${DATA}/bad -o OUT/f.ply)
+cli_test(bad.mesh_fifo 1 "surfaces.2..mesh: .*mesh_fifo.obj: expected a readable mesh file .a regular file., found a FIFO"
+         OUT/f.ply mesh ${HOSTILE}/names_mesh_fifo.obj.json -o OUT/f.ply)
+cli_test(bad.mesh_zeros 1 "surfaces.2..mesh: .*zeros.obj: expected a Wavefront OBJ file .text., found a NUL byte at offset 0"
+         OUT/f.ply mesh ${HOSTILE}/names_zeros.obj.json -o OUT/f.ply)
+cli_test(bad.scene_zeros 1 "zeros.json: expected a readable scene file of at most 64 MiB, found a file of 2048 MiB"
+         OUT/f.ply mesh ${HOSTILE}/zeros.json -o OUT/f.ply)
+cli_test(bad.reference_fifo 1 "reference.fifo: expected a readable reference file .CSV. .a regular file., found a FIFO"
+         OUT/f.ply solve ${DATA}/good_small.json -o OUT/f.ply --reference ${HOSTILE}/reference.fifo)
+cli_test(bad.fixed_point_fifo 1 "result.fifo: expected a readable PLY file .a regular file., found a FIFO"
+         OUT/f.ply solve ${DATA}/good_small.json -o OUT/f.ply --hemicube 16 --fixed-point ${HOSTILE}/result.fifo)
+foreach(case scene_fifo mesh_fifo mesh_zeros scene_zeros reference_fifo fixed_point_fifo)
+  set_tests_properties(cli.bad.${case} PROPERTIES FIXTURES_REQUIRED hostile_files TIMEOUT 20)
+endforeach()
+cli_test(bad.element_cap 1 "max_element_edge .--max-element-edge.: expected an element edge giving at most 2000000 elements .raise the edge, or the cap with --max-elements / solver.max_elements., found 0.001 .about .*e.12 elements."
+         OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001)
+cli_test(bad.element_cap_raised 1 "found 0.001 .about .*e.12 elements."
+         OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001 --max-elements 3000000)

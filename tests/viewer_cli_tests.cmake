@@ -131,3 +131,15 @@ viewer_cli_test(usage.cull_local 2 "--cull.*radiosity-only" OUT/usage16.png
 # An output path nobody can write (a file under /proc): exit 1, nothing left behind.
 viewer_cli_test(bad.unwritable_output 1 "radview: error: " ""
                 ${VIEWER_INPUT} -o /proc/radview_cannot_write_here.png)
+
+# Hostile result files: a property or an element twice, two index lists, a FIFO.
+foreach(case property_twice two_index_lists face_element_twice)
+  set(expect_property_twice "element face: expected each property once, found 'radiosity_r' twice")
+  set(expect_two_index_lists "element face: expected each property once, found 'vertex_indices' twice")
+  set(expect_face_element_twice "expected each element once, found 'face' twice")
+  viewer_cli_test(bad.result_${case} 1 "radview: error: .*result_${case}.ply: ${expect_${case}}"
+                  OUT/r.png ${CMAKE_CURRENT_SOURCE_DIR}/data/bad/result_${case}.ply -o OUT/r.png)
+endforeach()
+viewer_cli_test(bad.result_fifo 1 "radview: error: .*result.fifo: expected a readable PLY file .a regular file., found a FIFO"
+                OUT/r.png ${CMAKE_CURRENT_BINARY_DIR}/cli_out/hostile/result.fifo -o OUT/r.png)
+set_tests_properties(viewer_cli.bad.result_fifo PROPERTIES FIXTURES_REQUIRED "viewer_input;hostile_files" TIMEOUT 20)
