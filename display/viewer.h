@@ -15,39 +15,11 @@
 #include <glm/glm.hpp>
 
 #include "display/raster.h"
+#include "display/result_file.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 
 namespace rad::viewer {
-
-/// gluLookAt / gluPerspective camera.
-struct ViewCamera {
-  glm::dvec3 eye{0.0}, target{0.0, 0.0, 1.0}, up{0.0, 1.0, 0.0};
-  double fovYDeg = 45.0;
-};
-
-/// A radiosity result as read from its PLY file.
-struct ResultMesh {
-  std::string path;
-  std::vector<glm::vec3> positions;
-  std::vector<glm::dvec3> vertexRadiosity;
-  std::vector<std::array<int, 3>> faces;
-  std::vector<glm::dvec3> faceRadiosity;
-  /// The file's display colours (red, green, blue), when present: sRGB(clamp(K·B)) plus, for
-  /// a solve stopped before convergence, K·ρ·ambient (DESIGN.md, "Result mesh").
-  std::vector<std::array<uint8_t, 3>> vertexColour;
-  /// Vertex normals (nx, ny, nz), when present (used by --mode hybrid).
-  std::vector<glm::vec3> vertexNormal;
-  /// Each face's scene surface index (the face property `surface`), when present.
-  std::vector<int> faceSurface;
-  std::optional<ViewCamera> camera;  ///< from the `camera ...` header comment
-  std::optional<double> exposure;    ///< from the `exposure K` header comment
-  glm::dvec3 boundsMin{0.0}, boundsMax{0.0};
-};
-
-/// Reads a result PLY written by `radiosity solve`. Throws InputError naming the file and what
-/// is missing (e.g. the radiosity properties of a plain `radiosity mesh` output).
-ResultMesh loadResult(const std::string& path);
 
 /// Parses "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F"; keys may come in any order and any subset
 /// may be given, the others keep `base`'s values. Throws InputError("--camera: expected ...").
