@@ -231,9 +231,9 @@ std::vector<MeshFileGroup> readOff(const std::string& path) {
   MeshFileGroup group;
   for (uint64_t f = 0; f < faces; ++f) {
     const uint64_t n = words.count("a face's vertex count", kMaxPlyFaceVertices);
+    if (vertices == 0 && n > 0) throw inputError(words.where(), "a face of the file's vertices", "a file without vertices");
     Polygon face;
     for (uint64_t k = 0; k < n; ++k) face.outer.push_back(points[words.count("a vertex index", vertices - 1)]);
-    if (vertices == 0 && n > 0) throw inputError(words.where(), "vertex indices", "a face without vertices");
     words.skipLine();  // a face colour may follow
     group.faces.push_back(std::move(face));
   }

@@ -58,6 +58,7 @@ set(bad_cases
   ply_billions         "surfaces.2..mesh: .*ply_billions.ply: element vertex: expected at most the 3 records the file's size allows, found 4000000000 announced"
   ply_bad_header       "surfaces.2..mesh: .*ply_bad_header.ply: expected a property with PLY scalar types .*found 'property list uchar float'"
   ply_index_past_end   "surfaces.2..mesh: .*ply_index_past_end.ply: face 0: vertex_indices: expected vertex indices from 0 to 2, found 3"
+  off_fuzz_no_vertices "surfaces.2..mesh: .*off_fuzz_no_vertices.off: line [0-9]+: expected a face of the file's vertices, found a file without vertices"
   huge_polygon         "surfaces.0. .floor.: expected coordinates within ±1e15 scene units .*found the point .0, 0, 1e.77.")
 while(bad_cases)
   list(POP_FRONT bad_cases case regex)
