@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -148,6 +149,10 @@ int main(int argc, char** argv) {
     std::snprintf(line, sizeof line, "radview: rendered %dx%d (%s%s%s, %s shading, ssaa %d) in %.3f s; wrote ",
                   image.width, image.height, ladder ? "ladder, " : "", mode == "local" ? "local lighting, " : mode == "hybrid" ? "hybrid, " : "", backend.c_str(), shade.c_str(), o.ssaa, seconds);
     std::cerr << line << output << (hdr.empty() ? "" : " and " + hdr) << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "radview: error: out of memory: the picture or the mesh needs more than this machine "
+                 "has (lower --width, --height or --ssaa)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "radview: error: " << e.what() << "\n";
     return 1;

@@ -1,6 +1,7 @@
 // radiosity: solve, inspect and mesh radiosity scenes. Exit 0 on success, 1 on bad input or
 // failure, 2 on a usage error.
 #include <iostream>
+#include <new>
 #include <vector>
 
 #include "mesh/error.h"
@@ -149,6 +150,11 @@ int main(int argc, char** argv) {
       if (command.app->parsed()) command.run();
   } catch (const rad::InputError& e) {
     std::cerr << "radiosity: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "radiosity: error: out of memory: the scene's mesh and factors need more than this "
+                 "machine has (raise --max-element-edge or lower --max-elements and "
+                 "--factor-cache-mb)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "radiosity: error: " << e.what() << "\n";

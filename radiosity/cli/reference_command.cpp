@@ -131,7 +131,7 @@ Command addReferenceCommand(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "Reference file (CSV)")->required();
   auto* points = sub->add_option("--points", o->points, "Points to measure: lines 'x y z nx ny nz [tag]'");
   sub->add_option("--count", o->count, "Points to place when --points is not given (default 300)")
-      ->check(CLI::Range(1, 10'000'000))
+      ->check(CLI::Range(1, 1'000'000))
       ->excludes(points);
   auto* paths = sub->add_option("--paths", o->paths, "Exactly this many paths per point")->check(CLI::Range(2L, 1L << 40));
   sub->add_option("--relative-error", o->relativeError,
