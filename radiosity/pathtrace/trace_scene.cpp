@@ -209,6 +209,7 @@ void TraceScene::buildRays() {
     (triangles_[t].holes >= 0 ? r.holed.triangles : r.plain).push_back(int(t));
   for (unsigned g = 0; g < 2; ++g) {
     const std::vector<int>& global = g ? r.holed.triangles : r.plain;
+    if (global.empty()) continue;  // Embree takes no empty buffers
     RTCGeometry geometry = rtcNewGeometry(r.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     const size_t n = global.size();
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
