@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
@@ -33,6 +34,11 @@ std::string trimmed(std::string s) {
   return s.substr(start);
 }
 
+/// tinyobjloader keeps a face's corner count in one byte.
+constexpr int kMaxObjFaceVertices = 255;
+/// At most this much MTL text per OBJ (every material file it names, each read once).
+constexpr uint64_t kMaxMaterialBytes = uint64_t(64) << 20;
+
 /// A finite number filling the whole word, or false.
 bool finiteNumber(const std::string& word, double& v) {
   char* end = nullptr;
@@ -52,9 +58,9 @@ void checkObjText(const std::string& text, const std::string& path, bool materia
     std::string key, word;
     if (!(words >> key)) continue;
     const std::string where = path + ": line " + std::to_string(n);
-    const bool numbers = material ? (key == "Kd" || key == "Ke" || key == "Ka" || key == "Ks" || key == "Ni" ||
-                                     key == "Ns" || key == "d" || key == "Tr")
-                                  : (key == "v" || key == "vn" || key == "vt");
+    // The colours we take (Kd, Ke) and the vertex positions: finite numbers (an RGB colour;
+    // tinyobjloader reads neither spectral nor xyz colours).
+    const bool numbers = material ? (key == "Kd" || key == "Ke") : key == "v";
     if (numbers) {
       for (double v; words >> word;)
         if (!finiteNumber(word, v)) throw inputError(where, "finite numbers after '" + key + "'", "'" + word + "'");
@@ -62,15 +68,22 @@ void checkObjText(const std::string& text, const std::string& path, bool materia
       continue;
     }
     if (material || (key != "f" && key != "l" && key != "p")) continue;
+    int corners = 0;
     while (words >> word) {
       const std::string first = word.substr(0, word.find('/'));
       char* end = nullptr;
       errno = 0;
       const long long i = std::strtoll(first.c_str(), &end, 10);
-      if (first.empty() || *end != '\0' || errno == ERANGE || i == 0 || i > vertices || -i > vertices)
+      const bool inRange = i > 0 ? i <= vertices : i < 0 && uint64_t(-(i + 1)) < uint64_t(vertices);
+      if (first.empty() || *end != '\0' || errno == ERANGE || !inRange)
         throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
                                     std::to_string(vertices) + ", counting back)", "'" + first + "'");
+      ++corners;
     }
+    // tinyobjloader counts a face's corners in one byte.
+    if (corners > kMaxObjFaceVertices)
+      throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
+                       std::to_string(corners));
   }
 }
 
@@ -79,6 +92,7 @@ void checkObjText(const std::string& text, const std::string& path, bool materia
 std::string materialText(const std::string& obj, const std::string& path) {
   std::istringstream lines(obj);
   std::string line, text;
+  std::set<std::string> read;
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (int n = 1; std::getline(lines, line); ++n) {
     std::istringstream words(line);
@@ -86,10 +100,13 @@ std::string materialText(const std::string& obj, const std::string& path) {
     if (!(words >> word) || word != "mtllib") continue;
     for (std::string name; words >> name;) {
       const std::string file = (folder / name).string();
-      const std::string mtl = readInputFile(file, "the material file (MTL) that " + path + ": line " +
-                                                      std::to_string(n) + " names");
+      if (!read.insert(file).second) continue;  // each file once, however often it is named
+      const std::string what = "the material file (MTL) that " + path + ": line " + std::to_string(n) + " names";
+      const std::string mtl = readInputFile(file, what, kMaxMaterialBytes);
       checkObjText(mtl, file, true);
       text += mtl + "\n";
+      if (text.size() > kMaxMaterialBytes)
+        throw inputError(path + ": line " + std::to_string(n), "material files of at most 64 MiB in all", "more");
     }
   }
   return text;
@@ -131,6 +148,11 @@ std::vector<MeshFileGroup> readObj(const std::string& path) {
   const auto& materials = reader.GetMaterials();
   std::map<int, MeshFileGroup> groups;  // by material id, -1 = none
   for (const auto& shape : reader.GetShapes()) {
+    size_t corners = 0;
+    for (size_t n : shape.mesh.num_face_vertices) corners += n;
+    if (corners != shape.mesh.indices.size())
+      throw inputError(path + ": object " + shape.name, "faces whose corners add up to their indices",
+                       std::to_string(corners) + " corners for " + std::to_string(shape.mesh.indices.size()) + " indices");
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const std::string face = path + ": " + (shape.name.empty() ? "" : "object " + shape.name + ": ") +
@@ -216,9 +238,13 @@ class OffWords {
 std::vector<MeshFileGroup> readOff(const std::string& path) {
   const std::string text = readInputFile(path, "an OFF file");
   OffWords words(text, path);
+  // OFF, with the optional prefixes for texture coordinates, colours and normals after each
+  // vertex (skipped); 4OFF and nOFF (homogeneous, n-dimensional) are not 3D meshes.
   std::string magic;
-  if (!words.next(magic) || magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
-    throw inputError(words.where(), "the 'OFF' keyword", magic.empty() ? "nothing" : "'" + magic + "'");
+  static const std::set<std::string> keywords = {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
+  if (!words.next(magic) || !keywords.count(magic))
+    throw inputError(words.where(), "the 'OFF' keyword (or COFF, NOFF, CNOFF, STOFF, STCOFF, STNOFF, STCNOFF)",
+                     magic.empty() ? "nothing" : "'" + magic + "'");
   // Every vertex takes at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n").
   const uint64_t vertices = words.count("a vertex count", text.size() / 6);
   const uint64_t faces = words.count("a face count", text.size() / 8);
@@ -246,7 +272,9 @@ std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::stri
   const std::string ext = lowerExtension(path);
   if (ext != "obj" && ext != "ply" && ext != "off")
     throw inputError(where, "a mesh file ending in .obj, .ply or .off", path);
-  if (!std::filesystem::exists(path)) throw inputError(where, "a readable mesh file", "no file at " + path);
+  std::error_code missing;
+  if (!std::filesystem::exists(path, missing))
+    throw inputError(where, "a readable mesh file", "no file at " + path + (missing ? " (" + missing.message() + ")" : ""));
   std::vector<MeshFileGroup> groups;
   try {
     inputFileSize(path, "a readable mesh file");  // a FIFO or a folder: say so before reading

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -116,6 +117,8 @@ Header parseHeader(const std::string& bytes, const std::string& path) {
       if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
         throw inputError(path, "'element <name> <count>'", "'" + line + "'");
       if (!names.insert(e.name).second) throw inputError(path, "each element once", "'" + e.name + "' twice");
+      if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
+        throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
       h.elements.push_back(e);
     } else if (word == "property") {
       addProperty(h, words, line, path);

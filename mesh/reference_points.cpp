@@ -16,21 +16,29 @@ namespace {
 constexpr double kUnitTolerance = 1e-3;
 constexpr int kColumns = 15;
 
-/// Surface names and tags are written as they are; a comma or a line break would break the
-/// columns, so they are replaced.
+/// Surface names and tags as CSV fields (RFC 4180): quoted when they hold a comma or a quote,
+/// quotes doubled. A line break, which would need multi-line records, becomes a space.
 std::string cell(std::string s) {
   for (char& c : s)
-    if (c == ',' || c == '\n' || c == '\r') c = ' ';
-  return s;
+    if (c == '\n' || c == '\r') c = ' ';
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
 }
 
-std::vector<std::string> splitColumns(const std::string& line) {
-  std::vector<std::string> out;
-  std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) out.push_back(field);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
+/// The fields of one CSV line, quoted fields unquoted; false on an unterminated quote.
+bool splitColumns(const std::string& line, std::vector<std::string>& out) {
+  out.assign(1, "");
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) out.emplace_back();
+    else out.back() += c;
+  }
+  return !quoted;
 }
 
 double number(const std::string& text, const std::string& where, const char* column) {
@@ -54,6 +62,8 @@ ReferencePoint parsePoint(const std::vector<std::string>& f, const std::string& 
   p.tag = f[7];
   p.B = {v[8], v[9], v[10]};
   p.standardError = {v[11], v[12], v[13]};
+  if (!(v[14] >= 0 && v[14] <= 4e18 && v[14] == std::floor(v[14])))
+    throw inputError(where + ": paths", "a whole number of paths >= 0", f[14]);
   p.paths = long(v[14]);
   const double length = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
   if (std::abs(length - 1) > kUnitTolerance)
@@ -107,7 +117,8 @@ ReferenceFile readReferenceFile(const std::string& path) {
       columns = true;
       continue;
     }
-    const auto f = splitColumns(line);
+    std::vector<std::string> f;
+    if (!splitColumns(line, f)) throw inputError(where, "a closing quote", "none");
     if (f.size() != kColumns)
       throw inputError(where, std::to_string(kColumns) + " comma-separated columns",
                        std::to_string(f.size()));

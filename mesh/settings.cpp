@@ -1,5 +1,6 @@
 #include "mesh/settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -9,10 +10,13 @@
 namespace rad {
 
 double estimateElements(const Scene& scene, double edge) {
-  double area = 0;
-  for (const auto& s : scene.surfaces)
+  double area = 0, polygons = 0;
+  for (const auto& s : scene.surfaces) {
     for (const auto& p : s.polygons) area += polygonArea(p) * (s.twoSided ? 2 : 1);
-  return area / (std::sqrt(3.0) / 4 * edge * edge);
+    polygons += double(s.polygons.size()) * (s.twoSided ? 2 : 1);
+  }
+  // Every polygon (a mesh file's face) is at least one element, however small.
+  return std::max(area / (std::sqrt(3.0) / 4 * edge * edge), polygons);
 }
 
 Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {

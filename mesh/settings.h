@@ -76,7 +76,8 @@ struct Settings {
 Settings resolveSettings(const Scene& scene, const SolverBlock& flags);
 
 /// Elements a uniform mesh of the scene with edges of at most `edge` has, about: its area
-/// (both sides of two-sided surfaces) over the area of an equilateral triangle of that edge.
+/// (both sides of two-sided surfaces) over the area of an equilateral triangle of that edge,
+/// and at least one per polygon (a mesh file's face).
 double estimateElements(const Scene& scene, double edge);
 
 }  // namespace rad

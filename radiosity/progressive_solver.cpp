@@ -246,15 +246,14 @@ ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factor
     patchUnshot_[p] = power;
     unshotLuminance_ += std::abs(luminance(power));
   }
+  elapsed_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 int ProgressiveSolver::patchesNeverShot() const {
   return int(std::count(shotsOf_.begin(), shotsOf_.end(), 0));
 }
 
-double ProgressiveSolver::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double ProgressiveSolver::seconds() const { return elapsed_; }
 
 double ProgressiveSolver::unshotFraction() const {
   return emittedLuminance_ > 0 ? unshotLuminance_ / emittedLuminance_ : 0.0;
@@ -285,6 +284,13 @@ void ProgressiveSolver::setPatchUnshot(int patch, const glm::dvec3& power) {
 
 bool ProgressiveSolver::step() {
   if (stop_ != Stop::None) return false;
+  const auto start = std::chrono::steady_clock::now();
+  const bool shot = stepOnce();
+  elapsed_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return shot;
+}
+
+bool ProgressiveSolver::stepOnce() {
   if (unshotFraction() < options_.tolerance) stop_ = Stop::Tolerance;
   else if (options_.maxShots > 0 && shots_ >= options_.maxShots) stop_ = Stop::MaxShots;
   else if (options_.timeLimit > 0 && seconds() >= options_.timeLimit) stop_ = Stop::TimeLimit;

@@ -115,6 +115,8 @@ class ProgressiveSolver {
 
   Stop stopReason() const { return stop_; }
   long shots() const { return shots_; }
+  /// Seconds spent in the constructor and in step(), the solver's own time: what the caller
+  /// does between steps (measuring, printing) is not counted, nor by the time limit.
   double seconds() const;
   /// Σ|Aᵢ·ΔBᵢ| / Σ Aᵢ·Eᵢ, luminance weighted.
   double unshotFraction() const;
@@ -144,6 +146,7 @@ class ProgressiveSolver {
 
  private:
   int pickShooter() const;
+  bool stepOnce();
   void shoot(int patch);
   /// Makes sure rows_[patch][i] holds sample i's factors for every sample with power.
   void computeFactors(int patch, const std::vector<glm::dvec3>& powers);
@@ -173,6 +176,7 @@ class ProgressiveSolver {
   long shots_ = 0;
   Stop stop_ = Stop::None;
   std::chrono::steady_clock::time_point start_;
+  double elapsed_ = 0;  // seconds spent constructing and in step(): not the caller's time between
   /// Per patch, per sample: its form factors, once computed (kept within the cache budget).
   struct SampleRow {
     FormFactors factors;

@@ -71,7 +71,10 @@ TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<Refe
     }
     if (nearest > reach) where_[i] = Location{}, ++notInResult_;
   }
-  for (const auto& p : points_) floor_ = glm::max(floor_, p.B);
+  // The brightest lit value, emitters left out: a point on a lamp must not darken the rest.
+  for (const auto& p : points_)
+    if (!scene.materials[size_t(scene.surfaces[size_t(surfaceOf.at(p.surface))].material)].emits())
+      floor_ = glm::max(floor_, p.B);
   floor_ *= kDarkShare;
 }
 
@@ -119,8 +122,10 @@ ErrorSummary TrueError::measure(const std::vector<glm::dvec3>& vertexValue) cons
   std::vector<int> used(s.perSurface.size(), 0);
   for (size_t i = 0; i < points_.size(); ++i)
     for (int c = 0; c < 3; ++c) used[surfaceIndex[points_[i].surface]] += points_[i].B[c] > floor_[c] && points_[i].B[c] > 0;
-  for (size_t k = 0; k < s.perSurface.size(); ++k)
+  for (size_t k = 0; k < s.perSurface.size(); ++k) {
+    s.perSurface[k].channels = used[k];
     if (used[k]) s.perSurface[k].rms = std::sqrt(surfaceSq[k] / used[k]), s.perSurface[k].mean = surfaceSum[k] / used[k];
+  }
   return s;
 }
 

@@ -13,8 +13,8 @@
 
 namespace rad {
 
-/// A reference channel below this share of the brightest reference value in that channel is
-/// skipped (a relative error of near-black means little).
+/// A reference channel below this share of the brightest reference value in that channel on a
+/// non-emitting surface is skipped (a relative error of near-black means little).
 constexpr double kDarkShare = 0.01;
 /// A reference point farther than this (share of the scene's size) from every element of its
 /// surface is not in the result (cut away): it shows nothing there, a relative error of −1.
@@ -31,8 +31,8 @@ struct ErrorSummary {
   glm::dvec3 worstShown{0.0};              ///< what is shown there
   struct Surface {
     std::string name;
-    int points = 0;
-    double rms = 0, mean = 0;
+    int points = 0, channels = 0;  ///< channels: those used (not skipped as dark)
+    double rms = 0, mean = 0;       ///< over the channels used; 0 when none was
   };
   std::vector<Surface> perSurface;  ///< in order of first appearance among the points
 };

@@ -55,10 +55,14 @@ set(bad_cases
   obj_nan_emission     "surfaces.2..mesh: .*obj_nan_emission.mtl: line 3: expected finite numbers after 'Ke', found 'nan'"
   off_billions         "surfaces.2..mesh: .*off_billions.off: line 2: expected a vertex count from 0 to 4, found '4000000000'"
   off_index_past_end   "surfaces.2..mesh: .*off_index_past_end.off: line 6: expected a vertex index from 0 to 2, found '7'"
-  ply_billions         "surfaces.2..mesh: .*ply_billions.ply: element vertex: expected at most the 3 records the file's size allows, found 4000000000 announced"
+  ply_billions         "surfaces.2..mesh: .*ply_billions.ply: element vertex: expected at most the 3 records the file's size allows, found 2000000000 announced"
   ply_bad_header       "surfaces.2..mesh: .*ply_bad_header.ply: expected a property with PLY scalar types .*found 'property list uchar float'"
   ply_index_past_end   "surfaces.2..mesh: .*ply_index_past_end.ply: face 0: vertex_indices: expected vertex indices from 0 to 2, found 3"
   off_fuzz_no_vertices "surfaces.2..mesh: .*off_fuzz_no_vertices.off: line [0-9]+: expected a face of the file's vertices, found a file without vertices"
+  obj_face_300_corners "surfaces.2..mesh: .*obj_face_300_corners.obj: line 301: expected faces of at most 255 vertices, found 300"
+  obj_index_llong_min  "surfaces.2..mesh: .*obj_index_llong_min.obj: line 4: expected vertex indices from 1 to 3 .*found '-9223372036854775808'"
+  off_homogeneous      "surfaces.2..mesh: .*off_homogeneous.off: line 1: expected the 'OFF' keyword .*found '4OFF'"
+  long_mesh_name       "surfaces.2..mesh: expected a readable mesh file, found no file at .*xxxx.obj .File name too long."
   huge_polygon         "surfaces.0. .floor.: expected coordinates within ±1e15 scene units .*found the point .0, 0, 1e.77.")
 while(bad_cases)
   list(POP_FRONT bad_cases case regex)
@@ -185,3 +189,5 @@ cli_test(bad.element_cap 1 "max_element_edge .--max-element-edge.: expected an e
          OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001)
 cli_test(bad.element_cap_raised 1 "found 0.001 .about .*e.12 elements."
          OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001 --max-elements 3000000)
+cli_test(bad.element_cap_mesh_faces 1 "box_on_floor.json: max_element_edge .--max-element-edge.: expected an element edge giving at most 10 elements"
+         OUT/f.ply mesh ${DATA}/box_on_floor.json -o OUT/f.ply --max-elements 10)

@@ -71,7 +71,7 @@ Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSou
   while (solver.step()) {
     if (solver.shots() < next) continue;
     next = std::max(next + 1, long(next * kRowGrowth));
-    c.series.points.push_back({solver.seconds(), error()});  // the solver's clock: measuring is not counted
+    c.series.points.push_back({solver.seconds(), error()});  // the solver's own time: measuring is not in it
     c.steps.push_back(solver.shots());
   }
   return c;

@@ -92,7 +92,8 @@ Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string
   }
   Json table = Json::array();
   for (const auto& s : e.perSurface)
-    table.push_back({{"surface", s.name}, {"points", s.points}, {"rms", s.rms}, {"mean", s.mean}});
+    table.push_back({{"surface", s.name}, {"points", s.points}, {"channels_used", s.channels},
+                     {"rms", s.channels ? Json(s.rms) : Json()}, {"mean", s.channels ? Json(s.mean) : Json()}});
   j["per_surface"] = table;
   return j;
 }
