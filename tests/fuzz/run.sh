@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# Runs every fuzz target for SECONDS each (default 60), seeded with the project's own files;
-# crashes, leaks and hangs are saved under BUILD/crashes/TARGET/ and make the run fail.
-#   tests/fuzz/run.sh BUILD [SECONDS]
+# Runs the fuzz targets (all, or those named) for SECONDS each (default 60), seeded with the
+# project's own files; crashes, leaks and hangs are saved under BUILD/crashes/TARGET/ and make
+# the run fail.
+#   tests/fuzz/run.sh BUILD [SECONDS [TARGET...]]
 set -euo pipefail
-build=${1:?usage: run.sh BUILD [SECONDS]}
+build=${1:?usage: run.sh BUILD [SECONDS [TARGET...]]}
 seconds=${2:-60}
+shift $(( $# < 2 ? $# : 2 ))
+targets=(scene obj ply off result reference)
+[ $# -eq 0 ] || targets=("$@")
 root=$(cd "$(dirname "$0")/../.." && pwd)
 declare -A seeds=(
   [scene]="$root/scenes/*.json $root/scenes/stress/*.json $root/tests/data/*.json $root/tests/data/bad/*.json"
@@ -15,7 +19,7 @@ declare -A seeds=(
   [reference]="$root/docs/cornell_reference.csv $root/tests/data/bad/bad_reference.csv"
 )
 failed=0
-for target in scene obj ply off result reference; do
+for target in "${targets[@]}"; do
   corpus=$build/corpus/$target crashes=$build/crashes/$target
   mkdir -p "$corpus" "$crashes"
   # shellcheck disable=SC2086
