@@ -68,8 +68,6 @@ Json historyRow(const ProgressiveSolver& solver, const SolvableScene& s, const M
   return row;
 }
 
-Json position(const glm::dvec3& p) { return rgb(p); }
-
 /// The report's "error" block: the definition, the reference and the summary.
 Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string& file) {
   Json j;
@@ -87,7 +85,7 @@ Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string
   j["reference_noise_rms"] = e.referenceNoise;
   if (e.worstPoint >= 0) {
     const ReferencePoint& p = truth.points()[size_t(e.worstPoint)];
-    j["worst"] = {{"surface", p.surface}, {"tag", p.tag}, {"position", position(p.position)},
+    j["worst"] = {{"surface", p.surface}, {"tag", p.tag}, {"position", rgb(p.position)},
                   {"reference", rgb(p.B)}, {"shown", rgb(e.worstShown)}, {"relative_error", e.worst}};
   }
   Json table = Json::array();
@@ -104,7 +102,8 @@ void runSolve(const SolveOptions& o) {
   // The reference is read before any work: a bad file fails at once.
   std::vector<ReferencePoint> referencePoints;
   if (!o.reference.empty()) {
-    if (o.reference == "direct" || o.reference.size() < 4 || o.reference.substr(o.reference.size() - 4) == ".ply")
+    const bool ply = o.reference.size() >= 4 && o.reference.compare(o.reference.size() - 4, 4, ".ply") == 0;
+    if (o.reference == "direct" || ply)
       throw inputError("--reference " + o.reference,
                        "a reference CSV written by 'radiosity reference' (for the distance to the "
                        "direct solution of the same mesh and factors, use --fixed-point)", o.reference);
