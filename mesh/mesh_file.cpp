@@ -49,7 +49,13 @@ bool finiteNumber(const std::string& word, double& v) {
 /// Checks the lines tinyobjloader would read leniently (it turns "nan" into 0 and clamps
 /// indices): numbers after `v` and the colour keys of MTL are finite, and every face index
 /// names a vertex defined before it (1-based, or negative counting back), line by line.
-void checkObjText(const std::string& text, const std::string& path, bool material) {
+void checkObjText(std::string text, const std::string& path, bool material) {
+  // Lines end at LF, CRLF or (old Mac files) CR alone.
+  std::string lf;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] != '\r') lf += text[i];
+    else if (i + 1 >= text.size() || text[i + 1] != '\n') lf += '\n';
+  text.swap(lf);
   std::istringstream lines(text);
   std::string line;
   long long vertices = 0;

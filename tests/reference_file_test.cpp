@@ -1,11 +1,13 @@
-// The reference file (mesh/reference_points.h): what is written is read back, names with commas
-// and quotes included, and a bad file is a located error.
+// The reference file (mesh/reference_points.h) and mesh files (mesh/mesh_file.h): what is
+// written is read back (names with commas and quotes, every kind of line end); bad files are
+// located errors.
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "mesh/error.h"
+#include "mesh/mesh_file.h"
 #include "mesh/reference_points.h"
 
 namespace rad {
@@ -60,6 +62,24 @@ TEST(ReferenceFileTest, BadNumbersAreLocatedErrors) {
     }
   }
   std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// Mesh files whose lines end in CR alone (old Mac) or CRLF (Windows) read like any other.
+TEST(MeshFileTest, LineEndsOfEveryKind) {
+  const std::string data = std::string(RAD_SOURCE_DIR) + "/tests/data/";
+  const auto cr = readMeshFile(data + "cr_line_ends.obj", "test");
+  ASSERT_EQ(cr.size(), 1u);
+  ASSERT_EQ(cr[0].faces.size(), 1u);
+  EXPECT_EQ(cr[0].faces[0].outer.size(), 4u);
+  const auto crlf = readMeshFile(data + "crlf_line_ends.obj", "test");
+  ASSERT_EQ(crlf.size(), 1u);
+  EXPECT_EQ(crlf[0].faces[0].outer.size(), 3u);
 }
 
 }  // namespace
