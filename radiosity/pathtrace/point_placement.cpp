@@ -48,9 +48,13 @@ std::vector<Segment> boundaryEdges(const TraceScene& scene) {
   std::vector<Segment> out;
   const Scene& s = scene.scene();
   for (size_t i = 0; i < s.surfaces.size(); ++i) {
-    std::map<std::pair<std::tuple<double, double, double>, std::tuple<double, double, double>>, int> uses;
-    std::vector<Segment> edges;
-    auto key = [](const glm::dvec3& p) { return std::make_tuple(p.x, p.y, p.z); };
+    using Key = std::pair<std::tuple<double, double, double>, std::tuple<double, double, double>>;
+    std::map<Key, int> uses;
+    std::vector<std::pair<Key, Segment>> edges;  // keyed by the scene's own coordinates
+    auto key = [](const glm::dvec3& p, const glm::dvec3& q) -> Key {
+      auto u = std::make_tuple(p.x, p.y, p.z), v = std::make_tuple(q.x, q.y, q.z);
+      return u < v ? Key{u, v} : Key{v, u};
+    };
     for (const auto& polygon : s.surfaces[i].polygons) {
       const glm::dvec3 n = planeOf(scene, polygon.outer).second;
       std::vector<const Ring*> rings{&polygon.outer};
@@ -59,12 +63,12 @@ std::vector<Segment> boundaryEdges(const TraceScene& scene) {
         for (size_t k = 0; k < ring->size(); ++k) {
           const glm::dvec3 a = (*ring)[k], b = (*ring)[(k + 1) % ring->size()];
           if (a == b) continue;
-          ++uses[std::minmax(key(a), key(b))];
-          edges.push_back({scene.toLocal(a), scene.toLocal(b), n, int(i)});
+          ++uses[key(a, b)];
+          edges.push_back({key(a, b), {scene.toLocal(a), scene.toLocal(b), n, int(i)}});
         }
     }
-    for (const auto& e : edges)
-      if (uses[std::minmax(key(scene.toScene(e.a)), key(scene.toScene(e.b)))] == 1) out.push_back(e);
+    for (const auto& [k, e] : edges)
+      if (uses[k] == 1) out.push_back(e);
   }
   return out;
 }
