@@ -14,9 +14,9 @@
 #include "display/raster.h"
 #include "mesh/color.h"
 #include "mesh/error.h"
+#include "mesh/mesh_settings.h"
 #include "mesh/output_file.h"
 #include "mesh/ply_reader.h"
-#include "mesh/settings.h"
 
 namespace rad::viewer {
 namespace {
@@ -334,7 +334,7 @@ LocalScene prepareLocalScene(Scene scene) {
   if (scene.lights.empty())
     throw inputError(scene.path, "a scene with lights for --mode local", "none");
   LocalScene local;
-  local.mesh = buildPatchMesh(scene, resolveSettings(scene, {}).mesh());
+  local.mesh = buildPatchMesh(scene, resolveMeshSettings(scene, {}));
   local.scene = std::move(scene);
   local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
   local.boundsMax = -local.boundsMin;

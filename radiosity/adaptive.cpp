@@ -11,7 +11,7 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "mesh/refine.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/result.h"
 
 namespace rad {
@@ -159,7 +159,7 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   for (int round = 0; round < options.maxRounds && light.enabled(); ++round) {
     if (options.maxElements > 0 && mesh.elementCount() >= options.maxElements) {
       mesh.warnings.push_back("adaptive refinement stopped at " + std::to_string(mesh.elementCount()) +
-                              " elements, the cap (raise --max-elements / solver.max_elements)");
+                              " elements, the cap (raise solver.max_elements)");
       break;
     }
     std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
@@ -182,50 +182,6 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   if (stats.rounds > 0) updateMeshStats(mesh);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
-}
-
-SceneMesh meshScene(const Scene& scene, const Settings& settings) {
-  SceneMesh s;
-  s.mesh = buildPatchMesh(scene, settings.mesh());
-  addDirectLight(s, scene, settings);
-  return s;
-}
-
-void addDirectLight(SceneMesh& s, const Scene& scene, const Settings& settings) {
-  s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-  if (!settings.vertexDirect && !settings.adaptive) return;
-  s.direct = std::make_unique<DirectLight>(s.mesh, scene.diagonal());
-  if (!s.direct->enabled()) {
-    s.direct.reset();
-    int emitting = 0;
-    for (int p = 0; p < int(s.mesh.patches.size()); ++p) emitting += s.mesh.emits(p);
-    if (settings.adaptive && emitting > kMaxRayEmitterPatches) {
-      // No rays, no refinement: grade the contact lines beforehand, as without it.
-      Settings graded = settings;
-      graded.adaptive = false;
-      if (graded.mesh().contactGrading != settings.mesh().contactGrading)
-        s.mesh = buildPatchMesh(scene, graded.mesh());
-      s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-      s.mesh.warnings.push_back("adaptive subdivision off: " + std::to_string(emitting) +
-                                " emitting patches, more than the " +
-                                std::to_string(kMaxRayEmitterPatches) +
-                                " rays are cast to; the hemicubes' direct light is shown");
-    }
-    return;
-  }
-  if (settings.adaptive) {
-    AdaptiveOptions options;
-    options.minElementEdge = settings.minElementEdge;
-    options.maxElements = settings.maxElements;
-    options.contrast = settings.contrast;
-    options.exposure = settings.exposure.value_or(0.0);
-    auto base = std::make_unique<PatchMesh>(s.mesh);
-    s.adaptive = refineAdaptively(s.mesh, *s.direct, options);
-    if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(base);
-  } else {
-    s.direct->update(s.mesh);
-  }
-  if (!settings.vertexDirect) s.direct.reset();
 }
 
 }  // namespace rad

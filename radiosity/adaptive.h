@@ -6,10 +6,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include <memory>
-
 #include "mesh/patch_mesh.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/direct_light.h"
 
 namespace rad {
@@ -60,20 +58,5 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
 /// Refines the mesh until no element needs it (or maxRounds): each round bisects the marked
 /// elements (conforming, mesh/refine.h) and casts rays from the new vertices only.
 AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const AdaptiveOptions& options);
-
-/// A scene meshed by its settings: the uniform patch mesh (buildPatchMesh), refined when
-/// settings.adaptive; and the direct light at its vertices when settings.vertexDirect (null
-/// when off, or when the scene's emitters are too many for rays: DirectLight::enabled).
-struct SceneMesh {
-  PatchMesh mesh;
-  std::unique_ptr<DirectLight> direct;
-  AdaptiveStats adaptive;
-  /// The mesh before refinement (null when nothing was refined): the indirect light is shown
-  /// at its resolution (VertexDirect::base).
-  std::unique_ptr<PatchMesh> base;
-};
-SceneMesh meshScene(const Scene& scene, const Settings& settings);
-/// The second half of meshScene, for a mesh built by buildPatchMesh(scene, settings.mesh()).
-void addDirectLight(SceneMesh& meshed, const Scene& scene, const Settings& settings);
 
 }  // namespace rad

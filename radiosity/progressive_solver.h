@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/color.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/hemicube.h"
 
 namespace rad {

@@ -15,8 +15,9 @@
 #include "mesh/error.h"
 #include "mesh/refine.h"
 #include "mesh/scene.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
+#include "tests/solve_support.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/result.h"
@@ -24,41 +25,8 @@
 namespace rad {
 namespace {
 
-const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+using test::kScenes;
 constexpr double kLedger = 1e-9;
-
-/// A scene meshed and solved the way `radiosity solve` does it, with the vertex radiosities
-/// it would write.
-struct Solved {
-  Scene scene;
-  Settings settings;
-  SceneMesh meshed;
-  std::unique_ptr<ProgressiveSolver> solver;
-  std::unique_ptr<HemicubeFactors> factors;
-  std::vector<glm::dvec3> vertexB;
-};
-
-std::unique_ptr<Solved> solve(const std::string& path, SolverBlock flags = {}, double tolerance = 0) {
-  auto s = std::make_unique<Solved>();
-  s->scene = loadScene(path);
-  s->settings = resolveSettings(s->scene, flags);
-  s->meshed = meshScene(s->scene, s->settings);
-  const PatchMesh& mesh = s->meshed.mesh;
-  s->factors = std::make_unique<HemicubeFactors>(mesh, s->settings.hemicubeResolution,
-                                                 s->scene.diagonal(), s->settings.seed, 0,
-                                                 s->settings.emitterHemicubeResolution);
-  SolverOptions options;
-  options.tolerance = tolerance > 0 ? tolerance : s->settings.tolerance;
-  options.overshoot = s->settings.overshoot;
-  options.emitterSamples = s->settings.emitterSamples;
-  s->solver = std::make_unique<ProgressiveSolver>(mesh, *s->factors, options);
-  s->solver->run();
-  std::unique_ptr<VertexDirect> direct;
-  if (s->meshed.direct)
-    direct.reset(new VertexDirect{s->solver->direct(), s->meshed.direct->radiosity(), s->meshed.base.get()});
-  s->vertexB = vertexRadiosity(mesh, s->solver->radiosity(), direct.get());
-  return s;
-}
 
 /// Every scene the project ships and tests with, meshed as `radiosity solve` meshes it
 /// (adaptive refinement on): no vertex inside another element's edge, of its own surface
@@ -66,9 +34,7 @@ std::unique_ptr<Solved> solve(const std::string& path, SolverBlock flags = {}, d
 TEST(AdaptiveTest, EveryOutputMeshIsConforming) {
   std::vector<std::string> paths;
   for (const char* dir : {"scenes", "scenes/stress", "tests/data"})
-    for (const auto& entry : std::filesystem::directory_iterator(std::string(RAD_SOURCE_DIR) + "/" + dir))
-      if (entry.path().extension() == ".json") paths.push_back(entry.path().string());
-  std::sort(paths.begin(), paths.end());
+    for (const auto& path : test::sceneFiles(dir)) paths.push_back(path);
   ASSERT_GE(paths.size(), 20u);
   int refined = 0;
   for (const auto& path : paths) {
@@ -79,7 +45,7 @@ TEST(AdaptiveTest, EveryOutputMeshIsConforming) {
       continue;  // the invalid examples of tests/data
     }
     Settings settings = resolveSettings(scene, SolverBlock{});
-    SceneMesh meshed = meshScene(scene, settings);
+    MeshedScene meshed = meshScene(scene, settings);
     refined += meshed.adaptive.elementsAfter > meshed.adaptive.elementsBefore;
     auto found = findTJunctions(meshed.mesh, 1e-7, true);
     EXPECT_TRUE(found.empty()) << path << ": " << found.size() << " T-junctions, the first at vertex "
@@ -91,19 +57,19 @@ TEST(AdaptiveTest, EveryOutputMeshIsConforming) {
 /// The Cornell box, refined: the ledger closes after every shot, the meshed area is the
 /// surfaces' area, and no radiosity is negative or NaN.
 TEST(AdaptiveTest, LedgerBalancesAfterRefinement) {
-  auto s = solve(kScenes + "cornell.json");
+  auto s = test::solveLikeCli(kScenes + "cornell.json");
   const PatchMesh& mesh = s->meshed.mesh;
   EXPECT_GT(s->meshed.adaptive.elementsAfter, 2 * s->meshed.adaptive.elementsBefore);
   EXPECT_GT(s->meshed.adaptive.rounds, 1);
-  EXPECT_LE(s->solver->ledger().residual(), kLedger);
-  EXPECT_EQ(s->solver->stopReason(), ProgressiveSolver::Stop::Tolerance);
+  EXPECT_LE(s->solver().ledger().residual(), kLedger);
+  EXPECT_EQ(s->solver().stopReason(), ProgressiveSolver::Stop::Tolerance);
   for (size_t sf = 0; sf < mesh.surfaces.size(); ++sf) {
     double area = 0;
     for (int e = 0; e < mesh.elementCount(); ++e)
       if (mesh.surface(e) == int(sf) && mesh.side(e) == 0) area += mesh.area(e);
     EXPECT_NEAR(area / mesh.surfaces[sf].area, 1.0, 1e-9) << sf;
   }
-  for (const auto& b : s->vertexB) {
+  for (const auto& b : s->shown) {
     EXPECT_TRUE(std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z));
     EXPECT_GE(std::min({b.x, b.y, b.z}), 0.0);
   }
@@ -117,14 +83,14 @@ TEST(AdaptiveTest, LedgerBalancesAfterRefinement) {
 /// refined elements still hold the furnace: FurnaceTest.HoldsAfterRefinement.
 TEST(AdaptiveTest, FurnaceNeedsNoRefinement) {
   const Scene furnace = loadScene(kScenes + "furnace.json");
-  const SceneMesh many = meshScene(furnace, resolveSettings(furnace, {}));
+  const MeshedScene many = meshScene(furnace, resolveSettings(furnace, {}));
   EXPECT_EQ(many.adaptive.elementsAfter, many.adaptive.elementsBefore);
   EXPECT_EQ(many.direct, nullptr);
   ASSERT_FALSE(many.mesh.warnings.empty());  // and the user is told
   EXPECT_NE(many.mesh.warnings.back().find("adaptive subdivision off"), std::string::npos);
   SolverBlock flags;
   flags.maxPatchEdge = 0.5;
-  const SceneMesh few = meshScene(furnace, resolveSettings(furnace, flags));
+  const MeshedScene few = meshScene(furnace, resolveSettings(furnace, flags));
   EXPECT_EQ(few.adaptive.elementsAfter, few.adaptive.elementsBefore);
   ASSERT_NE(few.direct, nullptr);
   constexpr double kExactSum = 1e-4;  // the rays start 1e-5 of the scene size inwards
@@ -155,11 +121,11 @@ TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
   SolverBlock flags;
   flags.maxElementEdge = kBase;
   flags.minElementEdge = kMin;
-  auto s = solve(kScenes + "penumbra.json", flags);
+  auto s = test::solveLikeCli(kScenes + "penumbra.json", flags);
   const PatchMesh& mesh = s->meshed.mesh;
   std::vector<int> floor;
   for (int e = 0; e < mesh.elementCount(); ++e)
-    if (s->scene.surfaces[size_t(mesh.surface(e))].name == "floor") floor.push_back(e);
+    if (s->meshed.scene.surfaces[size_t(mesh.surface(e))].name == "floor") floor.push_back(e);
   const double rho = 0.5;
   const std::vector<glm::dvec3> light = {{-50, 200, -50}, {50, 200, -50}, {50, 200, 50}, {-50, 200, 50}};
   for (int axis : {0, 2}) {
@@ -170,7 +136,7 @@ TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
         glm::dvec3 x(0.0);
         x[axis] = sign * t;
         const double open = rho * pointPolygonFormFactor(x, {0, 1, 0}, light);
-        const double shown = gouraudAt(mesh, floor, s->vertexB, x).value_or(glm::dvec3(NAN)).x / open;
+        const double shown = gouraudAt(mesh, floor, s->shown, x).value_or(glm::dvec3(NAN)).x / open;
         const double exact = rho * penumbraVisibleFactor(x) / open;
         if (std::isnan(shownUmbra) && shown > 0.02) shownUmbra = t;
         if (std::isnan(exactUmbra) && exact > 0.02) exactUmbra = t;
@@ -186,7 +152,7 @@ TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
       EXPECT_NEAR(shownOuter, exactOuter, kMin);
     }
   }
-  const PatchMesh uniform = buildPatchMesh(s->scene, {kMin, s->settings.maxPatchEdge, true, 1});
+  const PatchMesh uniform = buildPatchMesh(s->meshed.scene, {kMin, s->meshed.settings.maxPatchEdge, true, 1});
   std::printf("penumbra scene: %d elements adaptive, %d uniform at the minimum edge\n",
               mesh.elementCount(), uniform.elementCount());
   EXPECT_LT(mesh.elementCount(), uniform.elementCount() / 3);

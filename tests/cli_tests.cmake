@@ -185,9 +185,9 @@ cli_test(bad.fixed_point_fifo 1 "result.fifo: expected a readable PLY file .a re
 foreach(case scene_fifo mesh_fifo mesh_zeros scene_zeros reference_fifo fixed_point_fifo)
   set_tests_properties(cli.bad.${case} PROPERTIES FIXTURES_REQUIRED hostile_files TIMEOUT 20)
 endforeach()
-cli_test(bad.element_cap 1 "max_element_edge .--max-element-edge.: expected an element edge giving at most 2000000 elements .raise the edge, or the cap with --max-elements / solver.max_elements., found 0.001 .about .*e.12 elements."
+cli_test(bad.element_cap 1 "solver.max_element_edge .--max-element-edge.: expected an element edge giving at most 2000000 elements .raise the edge, or the cap solver.max_elements .--max-elements.., found 0.001 .about .*e.12 elements."
          OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001)
 cli_test(bad.element_cap_raised 1 "found 0.001 .about .*e.12 elements."
          OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001 --max-elements 3000000)
-cli_test(bad.element_cap_mesh_faces 1 "box_on_floor.json: max_element_edge .--max-element-edge.: expected an element edge giving at most 10 elements"
+cli_test(bad.element_cap_mesh_faces 1 "box_on_floor.json: solver.max_element_edge .--max-element-edge.: expected an element edge giving at most 10 elements"
          OUT/f.ply mesh ${DATA}/box_on_floor.json -o OUT/f.ply --max-elements 10)

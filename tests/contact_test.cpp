@@ -9,8 +9,9 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
+#include "radiosity/solve.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/result.h"
 
@@ -101,7 +102,7 @@ std::vector<NearBase> floorNearBlocks(bool cutContacts, bool adaptive,
   Settings settings = resolveSettings(scene, SolverBlock{});
   settings.cutContacts = cutContacts;
   settings.adaptive = settings.vertexDirect = adaptive;
-  SceneMesh meshed = meshScene(scene, settings);
+  MeshedScene meshed = meshScene(scene, settings);
   const PatchMesh& mesh = meshed.mesh;
   int floor = -1, emitterPatches = 0;
   for (size_t s = 0; s < scene.surfaces.size(); ++s)

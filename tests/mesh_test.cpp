@@ -9,7 +9,6 @@
 
 #include "mesh/geometry.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/settings.h"
 
 namespace rad {
 namespace {
@@ -288,21 +287,6 @@ TEST(MeshingTest, TwoSidedSurfaceGetsAnOppositeCopy) {
     EXPECT_EQ(sides.size(), 1u);
   }
   EXPECT_NEAR(m.surfaces[0].area, 1.0, 1e-12);
-}
-
-TEST(MeshingTest, DefaultsFollowTheSceneSize) {
-  Scene scene = loadScene(kScenes + "cube.json");
-  scene.solver = SolverBlock{};
-  Settings s = resolveSettings(scene, SolverBlock{});
-  EXPECT_DOUBLE_EQ(s.maxElementEdge, std::sqrt(3.0) / kDefaultElementsPerDiagonal);
-  EXPECT_DOUBLE_EQ(s.maxPatchEdge, s.maxElementEdge * kDefaultPatchToElement);
-  SolverBlock flags;
-  flags.maxElementEdge = 0.2;
-  scene.solver.maxElementEdge = 0.3;
-  scene.solver.maxPatchEdge = 0.9;
-  s = resolveSettings(scene, flags);
-  EXPECT_EQ(s.maxElementEdge, 0.2);  // the flag wins over the file
-  EXPECT_EQ(s.maxPatchEdge, 0.9);
 }
 
 }  // namespace

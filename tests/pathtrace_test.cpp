@@ -8,8 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "mesh/scene.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
+#include "radiosity/solve.h"
 #include "radiosity/pathtrace/path_tracer.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/progressive_solver.h"
@@ -242,7 +243,7 @@ TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
   flags.emitterSamples = 4;
   flags.hemicubeResolution = flags.emitterHemicubeResolution = 64;
   const Settings settings = resolveSettings(furnace, flags);
-  const SceneMesh m = meshScene(furnace, settings);
+  const MeshedScene m = meshScene(furnace, settings);
   HemicubeFactors factors(m.mesh, settings.hemicubeResolution, furnace.diagonal(), settings.seed, 0,
                           settings.emitterHemicubeResolution);
   SolverOptions options;

@@ -12,7 +12,7 @@
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
 #include "radiosity/point_polygon.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 
 namespace rad {
 namespace {

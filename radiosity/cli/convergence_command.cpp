@@ -16,7 +16,7 @@
 #include "mesh/output_file.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/reference_points.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/cli/svg_plot.h"
 #include "radiosity/progressive_solver.h"
@@ -52,6 +52,13 @@ struct Curve {
 
 double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+/// The scene meshed by the flags without the mesher's warnings: the commands meshes it many
+/// times.
+MeshedScene meshQuietly(Scene scene, const SolverBlock& flags) {
+  const Settings settings = resolveSettings(scene, flags);
+  return meshScene(std::move(scene), settings);
 }
 
 /// One progressive run on fixed factors; `ambient` shows B + ρ·ambient.
@@ -109,11 +116,11 @@ std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const
   SolverBlock flags = o.flags;
   flags.adaptive = false;
   flags.vertexDirect = false;
-  SolvableScene solvable = meshScene(std::move(scene), flags, true);
-  const PatchMesh& mesh = solvable.mesh;
-  const TrueError truth(mesh, solvable.scene, points, reference);
-  SolverOptions options = solverOptions(solvable.settings);
-  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 1);
+  const MeshedScene meshed = meshQuietly(std::move(scene), flags);
+  const PatchMesh& mesh = meshed.mesh;
+  const TrueError truth(mesh, meshed.scene, points, reference);
+  SolverOptions options = solverOptions(meshed.settings);
+  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(meshed, 1);
   auto t0 = std::chrono::steady_clock::now();
   TransportMatrix system(mesh, *factors, options);
   const double matrixSeconds = seconds(t0);
@@ -167,22 +174,24 @@ Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<Refere
   SolverBlock flags = rung.flags;
   if (!flags.tolerance) flags.tolerance = kLadderTolerance;
   auto t0 = std::chrono::steady_clock::now();
-  SolvableScene solvable = meshScene(scene, flags, true);
-  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(solvable, 0);
+  const MeshedScene meshed = meshQuietly(scene, flags);
   const double meshing = seconds(t0);
-  const TrueError truth(solvable.mesh, solvable.scene, points, reference);
-  ProgressiveSolver solver(solvable.mesh, *factors, solverOptions(solvable.settings));
+  const TrueError truth(meshed.mesh, meshed.scene, points, reference);
+  RadiositySolve solve(meshed);
+  const ProgressiveSolver& solver = solve.solver();
+  auto record = [&] {
+    c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solve, meshed, truth).rms});
+    c.steps.push_back(solver.shots());
+  };
   long next = 1;
-  while (solver.step()) {
+  while (solve.step()) {
     if (solver.shots() < next) continue;
     next = std::max(next + 1, long(next * kRowGrowth));
-    c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solver, solvable, truth).rms});
-    c.steps.push_back(solver.shots());
+    record();
   }
-  c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solver, solvable, truth).rms});
-  c.steps.push_back(solver.shots());
+  record();
   std::fprintf(stderr, "  %-20s %6d elements, meshing %.2f s, %.2f s in all, true error %.2f %%\n",
-               rung.name.c_str(), solvable.mesh.elementCount(), meshing, c.series.points.back().first,
+               rung.name.c_str(), meshed.mesh.elementCount(), meshing, c.series.points.back().first,
                100 * c.series.points.back().second);
   return c;
 }
@@ -203,9 +212,7 @@ void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
   const std::vector<ReferencePoint> points = readReferenceFile(o.reference).points;
-  Scene scene = loadScene(o.scene);
-  if (!scene.hasEmitter())
-    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission", "none");
+  Scene scene = loadSceneToSolve(o.scene);
   printWarnings(scene.warnings);
 
   std::vector<std::pair<std::string, Curve>> curves;  // (group, curve)

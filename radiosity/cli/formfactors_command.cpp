@@ -10,7 +10,7 @@
 
 #include "mesh/error.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/point_polygon.h"

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 
 namespace rad::cli {
@@ -24,9 +24,8 @@ std::string rgb(const glm::dvec3& c) {
 
 void runInfo(const InfoOptions& o) {
   Scene loaded = loadScene(o.scene);
-  printWarnings(loaded.warnings);
   auto start = std::chrono::steady_clock::now();
-  const SolvableScene meshed = meshScene(std::move(loaded), o.flags, false);
+  const MeshedScene meshed = meshWithFlags(std::move(loaded), o.flags, false);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
 

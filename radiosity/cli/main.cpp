@@ -1,6 +1,8 @@
 // radiosity: solve, inspect and mesh radiosity scenes. Exit 0 on success, 1 on bad input or
 // failure, 2 on a usage error.
+#include <algorithm>
 #include <iostream>
+#include <regex>
 #include <new>
 #include <vector>
 
@@ -69,59 +71,40 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
       ->check(CLI::Range(0.0, 1e9));
 }
 
-SolvableScene meshScene(Scene scene, const SolverBlock& flags, bool needsEmitter) {
-  SolvableScene s{std::move(scene), {}, {}, nullptr, {}, nullptr};
-  s.settings = resolveSettings(s.scene, flags);
-  SceneMesh meshed;
-  meshed.mesh = buildPatchMesh(s.scene, s.settings.mesh());
-  printWarnings(meshed.mesh.warnings);
-  // An emitter cut away entirely is an error before any ray is cast.
-  if (needsEmitter) {
-    bool emits = false;
-    for (int e = 0; e < meshed.mesh.elementCount() && !emits; ++e)
-      emits = luminance(meshed.mesh.emission(e)) > 0;
-    if (!emits)
-      throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
-                       "every emitting surface enclosed by others and cut away");
-  }
-  const size_t printed = meshed.mesh.warnings.size();
-  addDirectLight(meshed, s.scene, s.settings);
-  // What refinement adds (a mesh meshed again has the same repairs first).
-  printWarnings({meshed.mesh.warnings.begin() + long(std::min(printed, meshed.mesh.warnings.size())),
-                 meshed.mesh.warnings.end()});
-  s.mesh = std::move(meshed.mesh);
-  s.direct = std::move(meshed.direct);
-  s.adaptive = meshed.adaptive;
-  s.base = std::move(meshed.base);
-  return s;
-}
-
-SolvableScene loadSolvable(const std::string& path, const SolverBlock& flags) {
-  Scene scene = loadScene(path);
-  if (!scene.hasEmitter())
-    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission",
-                     "none (radiosity light comes from emitting surfaces)");
+MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmitter) {
   printWarnings(scene.warnings);
-  return meshScene(std::move(scene), flags, true);
+  const Settings settings = resolveSettings(scene, flags);
+  return meshScene(std::move(scene), settings, {requireEmitter, [](const std::string& w) { printWarnings({withFlags(w)}); }});
 }
 
-SolverOptions solverOptions(const Settings& settings) {
-  SolverOptions options;
-  options.tolerance = settings.tolerance;
-  options.maxShots = settings.maxShots;
-  options.timeLimit = settings.timeLimit;
-  options.overshoot = settings.overshoot;
-  options.emitterSamples = settings.emitterSamples;
-  options.shooterSamples = settings.shooterSamples;
-  options.proximitySamples = settings.proximitySamples;
-  options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
-  return options;
+ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth) {
+  return truth.measure(shownAtVertices(scene, solve.bake()));
 }
 
-std::unique_ptr<HemicubeFactors> hemicubeFactors(const SolvableScene& s, int workers) {
-  return std::make_unique<HemicubeFactors>(s.mesh, s.settings.hemicubeResolution,
-                                           s.scene.diagonal(), s.settings.seed, workers,
-                                           s.settings.emitterHemicubeResolution);
+namespace {
+
+/// The command-line flag of a setting of the scene's solver block: one name in both, dashes
+/// for underscores, except the hemicube resolutions.
+std::string flagOf(const std::string& setting) {
+  if (setting == "hemicube_resolution") return "--hemicube";
+  if (setting == "emitter_hemicube_resolution") return "--emitter-hemicube";
+  std::string flag = "--" + setting;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+}  // namespace
+
+std::string withFlags(const std::string& message) {
+  static const std::regex setting(R"(solver\.([a-z_]+))");
+  std::string out;
+  auto last = message.cbegin();
+  for (std::sregex_iterator it(message.begin(), message.end(), setting), end; it != end; ++it) {
+    out.append(last, (*it)[0].second);
+    out += " (" + flagOf((*it)[1].str()) + ")";
+    last = (*it)[0].second;
+  }
+  return out.append(last, message.cend());
 }
 
 void printWarnings(const std::vector<std::string>& warnings) {
@@ -148,6 +131,9 @@ int main(int argc, char** argv) {
   try {
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();
+  } catch (const rad::SettingError& e) {
+    std::cerr << "radiosity: error: " << rad::cli::withFlags(e.what()) << "\n";
+    return 1;
   } catch (const rad::InputError& e) {
     std::cerr << "radiosity: error: " << e.what() << "\n";
     return 1;

@@ -5,7 +5,7 @@
 #include "mesh/mesh_export.h"
 #include "mesh/output_file.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 
 namespace rad::cli {
@@ -18,9 +18,7 @@ struct MeshOptions {
 
 void runMesh(const MeshOptions& o) {
   checkOutputPath(o.output);
-  Scene loaded = loadScene(o.scene);
-  printWarnings(loaded.warnings);
-  const SolvableScene meshed = meshScene(std::move(loaded), o.flags, false);
+  const MeshedScene meshed = meshWithFlags(loadScene(o.scene), o.flags, false);
   const PatchMesh& mesh = meshed.mesh;
   const Scene& scene = meshed.scene;
   PlyMesh ply = toPly(mesh);

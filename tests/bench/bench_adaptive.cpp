@@ -22,8 +22,9 @@
 
 #include "mesh/color.h"
 #include "mesh/scene.h"
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
+#include "radiosity/solve.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/result.h"
@@ -42,7 +43,7 @@ struct Point {
 };
 
 struct Solved {
-  SceneMesh meshed;
+  MeshedScene meshed;
   std::vector<glm::dvec3> vertexB;  ///< shown at the vertices
   std::vector<glm::dvec3> indirect; ///< at the vertices, without the direct light
   double seconds = 0;
@@ -53,28 +54,19 @@ Solved solve(const Scene& scene, const Settings& settings) {
   const auto start = std::chrono::steady_clock::now();
   Solved s;
   s.meshed = meshScene(scene, settings);
-  const PatchMesh& mesh = s.meshed.mesh;
-  HemicubeFactors factors(mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
-                          settings.emitterHemicubeResolution);
-  SolverOptions options;
-  options.tolerance = settings.tolerance;
-  options.overshoot = settings.overshoot;
-  options.shooterSamples = settings.shooterSamples;
-  ProgressiveSolver solver(mesh, factors, options);
-  solver.run();
-  std::vector<glm::dvec3> B = solver.radiosity();
-  for (auto& b : B) b = glm::max(b, glm::dvec3(0.0));
-  std::unique_ptr<VertexDirect> direct;
-  if (s.meshed.direct)
-    direct.reset(new VertexDirect{solver.direct(), s.meshed.direct->radiosity(), s.meshed.base.get()});
-  s.vertexB = vertexRadiosity(mesh, B, direct.get());
-  if (direct) {
-    VertexDirect none{solver.direct(), std::vector<glm::dvec3>(mesh.mesh.n_vertices(), glm::dvec3(0.0)),
-                      s.meshed.base.get()};
-    s.indirect = vertexRadiosity(mesh, B, &none);
+  RadiositySolve solve(s.meshed);
+  while (solve.step()) {
+  }
+  const Solution solution = solve.bake();
+  s.shots = solve.solver().shots();
+  s.vertexB = shownAtVertices(s.meshed, solution);
+  if (solution.direct) {
+    // The display equation without its direct term D.
+    VertexDirect none = *solution.direct;
+    none.vertex.assign(none.vertex.size(), glm::dvec3(0.0));
+    s.indirect = vertexRadiosity(s.meshed.mesh, solution.B, &none);
   }
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  s.shots = solver.shots();
   return s;
 }
 

@@ -1,4 +1,4 @@
-#include "mesh/settings.h"
+#include "radiosity/settings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,11 +25,10 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
     return flag ? *flag : fromFile ? *fromFile : fallback;
   };
   Settings s;
-  s.maxElementEdge = pick(flags.maxElementEdge, file.maxElementEdge,
-                          scene.diagonal() / kDefaultElementsPerDiagonal);
-  s.maxPatchEdge = pick(flags.maxPatchEdge, file.maxPatchEdge,
-                        s.maxElementEdge * kDefaultPatchToElement);
-  s.cutContacts = pick(flags.cutContacts, file.cutContacts, true);
+  const MeshSettings mesh = resolveMeshSettings(scene, flags);
+  s.maxElementEdge = mesh.maxElementEdge;
+  s.maxPatchEdge = mesh.maxPatchEdge;
+  s.cutContacts = mesh.cutContacts;
   s.adaptive = pick(flags.adaptive, file.adaptive, true);
   s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge,
                           s.maxElementEdge / kDefaultMinElementRatio);
@@ -56,10 +55,10 @@ Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
   if (!(estimate <= double(s.maxElements))) {
     char found[160];
     std::snprintf(found, sizeof found, "%g (about %.3g elements)", s.maxElementEdge, estimate);
-    throw inputError(scene.path + ": max_element_edge (--max-element-edge)",
+    throw SettingError(inputError(scene.path + ": solver.max_element_edge",
                      "an element edge giving at most " + std::to_string(s.maxElements) +
-                         " elements (raise the edge, or the cap with --max-elements / solver.max_elements)",
-                     found);
+                         " elements (raise the edge, or the cap solver.max_elements)",
+                     found).what());
   }
   return s;
 }

@@ -3,13 +3,13 @@
 // defaults relative to the scene size.
 #include <optional>
 
+#include "mesh/error.h"
+#include "mesh/mesh_settings.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 
 namespace rad {
 
-/// Default element edge: the scene diagonal divided by this.
-constexpr double kDefaultElementsPerDiagonal = 25;
 /// Default overshooting factor: on the Cornell box (docs/cornell_convergence.csv) ω = 1.3 reaches
 /// 1 % error in 1 719 shots against 2 514 for plain shooting, and 0.1 % in 3 041 against 4 046.
 constexpr double kDefaultOvershoot = 1.3;
@@ -36,8 +36,14 @@ constexpr double kDefaultContrast = 0.02;
 /// Default cap on elements (meshing and refinement): about 14 GiB at the ~7 KiB per element a
 /// solve takes (45 000 elements: 328 MiB peak), within this 24 GiB machine class.
 constexpr long kDefaultMaxElements = 2'000'000;
-/// Default patch edge: this many element edges.
-constexpr double kDefaultPatchToElement = 3;
+
+/// A setting whose value cannot be used, from the scene's solver block or an override: the
+/// message names it as in the scene file (solver.max_element_edge); a command line maps that
+/// to its flag.
+class SettingError : public InputError {
+ public:
+  using InputError::InputError;
+};
 
 struct Settings {
   double maxElementEdge = 0, maxPatchEdge = 0;
@@ -67,7 +73,7 @@ struct Settings {
   long maxElements = kDefaultMaxElements;
 
   MeshSettings mesh() const {
-    return {maxElementEdge, maxPatchEdge, cutContacts, adaptive ? 1.0 : kDefaultContactGrading};
+    return {maxElementEdge, maxPatchEdge, cutContacts, contactGrading(adaptive)};
   }
 };
 

@@ -1,0 +1,24 @@
+#pragma once
+// The JSON report of `radiosity solve` (DESIGN.md, "Report"): settings, counts, what the scene
+// did not need, the energy ledger, the true error and the history.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "radiosity/solve.h"
+#include "radiosity/true_error.h"
+
+namespace rad::cli {
+
+using Json = nlohmann::ordered_json;
+
+Json rgb(const glm::dvec3& c);
+const char* stopName(ProgressiveSolver::Stop s);
+
+/// The report's "error" block: the definition, the reference and the summary.
+Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string& file);
+
+/// Everything the report says of a finished solve, but the history and the error.
+Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const Solution& solution);
+
+}  // namespace rad::cli

@@ -1,0 +1,169 @@
+#include "radiosity/solve.h"
+
+#include <glm/common.hpp>
+
+#include "mesh/color.h"
+#include "mesh/error.h"
+#include "radiosity/result.h"
+
+namespace rad {
+
+namespace {
+
+/// Passes the warnings from index `from` on to options.warn.
+void passOn(const std::vector<std::string>& warnings, size_t from, const MeshingOptions& options) {
+  if (!options.warn) return;
+  for (size_t k = from; k < warnings.size(); ++k) options.warn(warnings[k]);
+}
+
+/// An emitter cut away entirely is an error before any ray is cast.
+void requireEmitter(const MeshedScene& s) {
+  for (int e = 0; e < s.mesh.elementCount(); ++e)
+    if (luminance(s.mesh.emission(e)) > 0) return;
+  throw inputError(s.scene.path + ": surfaces", "an emitting surface left after contacts are cut",
+                   "every emitting surface enclosed by others and cut away");
+}
+
+int emittingPatches(const PatchMesh& mesh) {
+  int emitting = 0;
+  for (int p = 0; p < int(mesh.patches.size()); ++p) emitting += mesh.emits(p);
+  return emitting;
+}
+
+/// Without rays there is no refinement to grade the contact lines: they are graded by the
+/// mesher instead, as with adaptive refinement off (the mesh is built again if that differs).
+void meshWithoutRays(MeshedScene& s) {
+  const int emitting = emittingPatches(s.mesh);
+  if (!s.settings.adaptive || emitting <= kMaxRayEmitterPatches) return;
+  Settings graded = s.settings;
+  graded.adaptive = false;
+  if (graded.mesh().contactGrading != s.settings.mesh().contactGrading)
+    s.mesh = buildPatchMesh(s.scene, graded.mesh());
+  s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
+  s.mesh.warnings.push_back("adaptive subdivision off: " + std::to_string(emitting) +
+                            " emitting patches, more than the " + std::to_string(kMaxRayEmitterPatches) +
+                            " rays are cast to; the hemicubes' direct light is shown");
+}
+
+AdaptiveOptions adaptiveOptions(const Settings& settings) {
+  AdaptiveOptions options;
+  options.minElementEdge = settings.minElementEdge;
+  options.maxElements = settings.maxElements;
+  options.contrast = settings.contrast;
+  options.exposure = settings.exposure.value_or(0.0);
+  return options;
+}
+
+/// Refines the mesh where the direct light changes visibly, keeping the mesh as it was
+/// (MeshedScene::base) when anything was refined.
+void refine(MeshedScene& s) {
+  auto base = std::make_unique<PatchMesh>(s.mesh);
+  s.adaptive = refineAdaptively(s.mesh, *s.direct, adaptiveOptions(s.settings));
+  if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(base);
+}
+
+/// The direct light at the vertices by rays and, with it, adaptive refinement; or, when the
+/// emitters are too many for rays, the mesh the hemicubes alone need.
+void lightVertices(MeshedScene& s) {
+  s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
+  if (!s.settings.vertexDirect && !s.settings.adaptive) return;
+  s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
+  if (!s.direct->enabled()) {
+    s.direct.reset();
+    return meshWithoutRays(s);
+  }
+  if (s.settings.adaptive)
+    refine(s);
+  else
+    s.direct->update(s.mesh);
+  if (!s.settings.vertexDirect) s.direct.reset();
+}
+
+}  // namespace
+
+Scene loadSceneToSolve(const std::string& path) {
+  Scene scene = loadScene(path);
+  if (!scene.hasEmitter())
+    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission",
+                     "none (radiosity light comes from emitting surfaces)");
+  return scene;
+}
+
+MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options) {
+  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr};
+  s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
+  passOn(s.mesh.warnings, 0, options);
+  if (options.requireEmitter) requireEmitter(s);
+  // A mesh built again has the same repairs first: only what follows is new.
+  const size_t passed = s.mesh.warnings.size();
+  lightVertices(s);
+  passOn(s.mesh.warnings, passed, options);
+  return s;
+}
+
+SolverOptions solverOptions(const Settings& settings) {
+  SolverOptions options;
+  options.tolerance = settings.tolerance;
+  options.maxShots = settings.maxShots;
+  options.timeLimit = settings.timeLimit;
+  options.overshoot = settings.overshoot;
+  options.emitterSamples = settings.emitterSamples;
+  options.shooterSamples = settings.shooterSamples;
+  options.proximitySamples = settings.proximitySamples;
+  options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
+  return options;
+}
+
+std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& s, int workers) {
+  return std::make_unique<HemicubeFactors>(s.mesh, s.settings.hemicubeResolution, s.scene.diagonal(),
+                                           s.settings.seed, workers, s.settings.emitterHemicubeResolution);
+}
+
+RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)
+    : RadiositySolve(scene, solverOptions(scene.settings), workers) {}
+
+RadiositySolve::RadiositySolve(const MeshedScene& scene, const SolverOptions& options, int workers)
+    : scene_(scene), factors_(hemicubeFactors(scene, workers)), solver_(scene.mesh, *factors_, options) {}
+
+// Overshooting can leave a slightly negative channel mid-solve; a result never carries one.
+// With direct light from rays at the vertices, the emission not yet shot is already shown,
+// so the ambient term leaves it out.
+Solution RadiositySolve::bake() const {
+  Solution b;
+  b.converged = solver_.stopReason() == ProgressiveSolver::Stop::Tolerance;
+  const bool raysShowEmission = bool(scene_.direct);
+  b.ambient = b.converged ? glm::dvec3(0.0) : glm::max(solver_.ambient(raysShowEmission), glm::dvec3(0.0));
+  b.B = solver_.radiosity();
+  for (auto& x : b.B)
+    if (x.x < 0 || x.y < 0 || x.z < 0) {
+      ++b.clamped;
+      x = glm::max(x, glm::dvec3(0.0));
+    }
+  if (scene_.direct) b.direct = VertexDirect{solver_.direct(), scene_.direct->radiosity(), scene_.base.get()};
+  return b;
+}
+
+Solution solveRadiosity(const MeshedScene& scene) {
+  RadiositySolve solve(scene);
+  while (solve.step()) {
+  }
+  return solve.bake();
+}
+
+std::vector<glm::dvec3> shownAtVertices(const MeshedScene& scene, const Solution& solution) {
+  return shownVertexRadiosity(scene.mesh, solution.B, solution.ambient,
+                              solution.direct ? &*solution.direct : nullptr);
+}
+
+double exposureOf(const MeshedScene& scene, const Solution& solution) {
+  return scene.settings.exposure ? *scene.settings.exposure : autoExposure(scene.mesh, solution.B);
+}
+
+Camera cameraOf(const Scene& scene) { return scene.camera ? *scene.camera : defaultCamera(scene); }
+
+void writeSolution(const std::string& path, const MeshedScene& scene, const Solution& solution) {
+  writeResult(path, scene.mesh, solution.B, solution.ambient, exposureOf(scene, solution),
+              cameraOf(scene.scene), solution.direct ? &*solution.direct : nullptr);
+}
+
+}  // namespace rad

@@ -1,0 +1,31 @@
+// The run settings: command-line overrides over the scene's solver block over defaults that
+// follow the scene's size.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "mesh/scene.h"
+#include "radiosity/settings.h"
+
+namespace rad {
+namespace {
+
+const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+
+TEST(SettingsTest, DefaultsFollowTheSceneSize) {
+  Scene scene = loadScene(kScenes + "cube.json");
+  scene.solver = SolverBlock{};
+  Settings s = resolveSettings(scene, SolverBlock{});
+  EXPECT_DOUBLE_EQ(s.maxElementEdge, std::sqrt(3.0) / kDefaultElementsPerDiagonal);
+  EXPECT_DOUBLE_EQ(s.maxPatchEdge, s.maxElementEdge * kDefaultPatchToElement);
+  SolverBlock flags;
+  flags.maxElementEdge = 0.2;
+  scene.solver.maxElementEdge = 0.3;
+  scene.solver.maxPatchEdge = 0.9;
+  s = resolveSettings(scene, flags);
+  EXPECT_EQ(s.maxElementEdge, 0.2);  // the flag wins over the file
+  EXPECT_EQ(s.maxPatchEdge, 0.9);
+}
+
+}  // namespace
+}  // namespace rad
