@@ -1,36 +1,30 @@
 # The viewer: its GoogleTest binary and the `radview` command line under CTest (same style as
-# cli_tests.cmake). A CTest fixture solves the Cornell box once, coarsely (a few seconds), and
-# meshes a small scene without solving it (a PLY without radiosity properties).
+# cli_tests.cmake). Their inputs are files kept in tests/data, so that the viewer's tests and
+# golden images do not change with the solver: a coarse Cornell result, made once by
+#   radiosity solve scenes/cornell.json -o tests/data/cornell_coarse_result.ply
+#       --max-element-edge 80 --max-patch-edge 160
+# and a small scene meshed without solving it (a PLY without radiosity properties), made once by
+#   radiosity mesh tests/data/good_small.json -o tests/data/good_small_mesh_only.ply
 set(VIEWER_OUT ${CMAKE_CURRENT_BINARY_DIR}/viewer_out)
 file(MAKE_DIRECTORY ${VIEWER_OUT})
-set(VIEWER_INPUT ${VIEWER_OUT}/cornell.ply)
-set(VIEWER_MESH_ONLY ${VIEWER_OUT}/mesh_only.ply)
-set(VIEWER_SOLVE_ARGS solve ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o ${VIEWER_INPUT}
-    --max-element-edge 80 --max-patch-edge 160)
-
-add_test(NAME viewer.make_input COMMAND radiosity_cli ${VIEWER_SOLVE_ARGS})
-add_test(NAME viewer.make_mesh_only
-         COMMAND radiosity_cli mesh ${CMAKE_CURRENT_SOURCE_DIR}/data/good_small.json -o ${VIEWER_MESH_ONLY})
-set_tests_properties(viewer.make_input viewer.make_mesh_only PROPERTIES FIXTURES_SETUP viewer_input)
+set(VIEWER_INPUT ${CMAKE_CURRENT_SOURCE_DIR}/data/cornell_coarse_result.ply)
+set(VIEWER_MESH_ONLY ${CMAKE_CURRENT_SOURCE_DIR}/data/good_small_mesh_only.ply)
 
 add_executable(viewer_test viewer_test.cpp)
 target_link_libraries(viewer_test PRIVATE rad::viewer GTest::gtest_main)
-list(JOIN VIEWER_SOLVE_ARGS " " VIEWER_SOLVE_LINE)
 target_compile_definitions(viewer_test PRIVATE
   RAD_VIEWER_INPUT="${VIEWER_INPUT}"
-  RAD_VIEWER_SOLVE="$<TARGET_FILE:radiosity_cli> ${VIEWER_SOLVE_LINE}"
   RAD_VIEWER_OUT="${VIEWER_OUT}"
   RAD_SCENES="${PROJECT_SOURCE_DIR}/scenes"
   RAD_GOLDEN_DIR="${CMAKE_CURRENT_SOURCE_DIR}/golden")
-add_dependencies(viewer_test radiosity_cli radview)
-gtest_discover_tests(viewer_test PROPERTIES FIXTURES_REQUIRED viewer_input)
+add_dependencies(viewer_test radview)
+gtest_discover_tests(viewer_test)
 
 # name, expected exit code, stderr regex, output file or "", then the arguments ("OUT/" is the
 # case's own folder).
 function(viewer_cli_test name code regex output)
   add_cli_case(viewer_cli.${name} $<TARGET_FILE:radview> ${VIEWER_OUT}/cli/${name} ${code}
                "${regex}" "${output}" ${ARGN})
-  set_tests_properties(viewer_cli.${name} PROPERTIES FIXTURES_REQUIRED viewer_input)
 endfunction()
 
 # Good runs write the picture.
@@ -142,4 +136,4 @@ foreach(case property_twice two_index_lists face_element_twice)
 endforeach()
 viewer_cli_test(bad.result_fifo 1 "radview: error: .*result.fifo: expected a readable PLY file .a regular file., found a FIFO"
                 OUT/r.png ${CMAKE_CURRENT_BINARY_DIR}/cli_out/hostile/result.fifo -o OUT/r.png)
-set_tests_properties(viewer_cli.bad.result_fifo PROPERTIES FIXTURES_REQUIRED "viewer_input;hostile_files" TIMEOUT 20)
+set_tests_properties(viewer_cli.bad.result_fifo PROPERTIES FIXTURES_REQUIRED hostile_files TIMEOUT 20)
