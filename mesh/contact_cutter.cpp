@@ -26,10 +26,16 @@ using Traits = CGAL::Arr_consolidated_curve_data_traits_2<Segments, int>;
 using Arrangement = CGAL::Arrangement_2<Traits>;
 using Face = Arrangement::Face_const_handle;
 using Halfedge = Arrangement::Halfedge_const_handle;
+using Ccb = Arrangement::Ccb_halfedge_const_circulator;  ///< a boundary cycle of a face
+/// Where the caller's ids are known, by position.
+using IdMap = std::map<std::pair<double, double>, int>;
+/// Whether each face of the arrangement is kept.
+using KeptFaces = std::map<Face, bool>;
 
 /// Curve data: contact lines by index, the polygon's own edges by this.
 constexpr int kRingEdge = -1;
 
+/// The point as an exact one, and back (rounded).
 EK::Point_2 exact(const glm::dvec2& p) { return {p.x, p.y}; }
 glm::dvec2 approx(const EK::Point_2& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y())}; }
 
@@ -42,65 +48,73 @@ bool insideRings(const std::vector<std::vector<EK::Point_2>>& rings, const EK::P
   return inside;
 }
 
-/// A point strictly inside face f: off the middle of one of its edges, towards the face, by
-/// a step (relative to the edge) halved until the point lands in f, by ray-crossing parity
-/// against f's boundary cycles.
-EK::Point_2 pointIn(Face f) {
-  auto try_edge = [&](Halfedge h, EK::Point_2& out) {
-    if (h->twin()->face() == f) return false;  // an edge with f on both sides
-    EK::Point_2 a = h->source()->point(), b = h->target()->point();
-    EK::Point_2 mid = CGAL::midpoint(a, b);
-    EK::Vector_2 left = (b - a).perpendicular(CGAL::COUNTERCLOCKWISE);  // f is on the left
-    EK::FT step(1.0 / 64);
-    for (int k = 0; k < 40; ++k, step /= 2) {
-      EK::Point_2 q = mid + left * step;
-      // q must lie in f (not only left of this edge: faces need not be convex).
-      bool in = true;
-      auto check = [&](Arrangement::Ccb_halfedge_const_circulator start) {
-        // Ray-crossing parity against the face's boundary cycles.
-        auto c = start;
-        bool odd = false;
-        do {
-          EK::Point_2 p0 = c->source()->point(), p1 = c->target()->point();
-          if ((p0.y() > q.y()) != (p1.y() > q.y())) {
-            EK::FT x = p0.x() + (q.y() - p0.y()) * (p1.x() - p0.x()) / (p1.y() - p0.y());
-            if (x > q.x()) odd = !odd;
-          }
-          if (CGAL::collinear(p0, p1, q) && CGAL::collinear_are_ordered_along_line(p0, q, p1))
-            in = false;  // on an edge
-        } while (++c != start);
-        return odd;
-      };
-      bool inOuter = f->has_outer_ccb() ? check(f->outer_ccb()) : true;
-      bool inHole = false;
-      for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
-        inHole = inHole || check(*hole);
-      if (in && inOuter && !inHole) {
-        out = q;
-        return true;
-      }
+/// Ray-crossing parity of q against one boundary cycle: true when odd. Sets `onEdge` when q
+/// lies on one of the cycle's edges.
+bool oddCrossings(Ccb start, const EK::Point_2& q, bool& onEdge) {
+  auto c = start;
+  bool odd = false;
+  do {
+    EK::Point_2 p0 = c->source()->point(), p1 = c->target()->point();
+    if ((p0.y() > q.y()) != (p1.y() > q.y())) {
+      EK::FT x = p0.x() + (q.y() - p0.y()) * (p1.x() - p0.x()) / (p1.y() - p0.y());
+      if (x > q.x()) odd = !odd;
     }
-    return false;
-  };
+    if (CGAL::collinear(p0, p1, q) && CGAL::collinear_are_ordered_along_line(p0, q, p1))
+      onEdge = true;
+  } while (++c != start);
+  return odd;
+}
+
+/// Whether q lies in face f, on none of its edges (faces need not be convex).
+bool strictlyInside(Face f, const EK::Point_2& q) {
+  bool onEdge = false;
+  bool inOuter = f->has_outer_ccb() ? oddCrossings(f->outer_ccb(), q, onEdge) : true;
+  bool inHole = false;
+  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
+    inHole = inHole || oddCrossings(*hole, q, onEdge);
+  return !onEdge && inOuter && !inHole;
+}
+
+/// A point of face f off the middle of its edge h, towards f (on h's left), by a step
+/// (relative to the edge) halved until the point lands in f; false when none does or f lies
+/// on both sides of h.
+bool pointBeside(Face f, Halfedge h, EK::Point_2& out) {
+  if (h->twin()->face() == f) return false;  // an edge with f on both sides
+  EK::Point_2 a = h->source()->point(), b = h->target()->point();
+  EK::Point_2 mid = CGAL::midpoint(a, b);
+  EK::Vector_2 left = (b - a).perpendicular(CGAL::COUNTERCLOCKWISE);  // f is on the left
+  EK::FT step(1.0 / 64);
+  for (int k = 0; k < 40; ++k, step /= 2) {
+    EK::Point_2 q = mid + left * step;
+    if (strictlyInside(f, q)) {
+      out = q;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// A point of face f beside one of the edges of the cycle, the first that gives one.
+bool pointBesideCycle(Face f, Ccb start, EK::Point_2& q) {
+  auto c = start;
+  do {
+    if (pointBeside(f, c, q)) return true;
+  } while (++c != start);
+  return false;
+}
+
+/// A point strictly inside face f: beside one of its edges, outer boundary first.
+EK::Point_2 pointIn(Face f) {
   EK::Point_2 q;
-  if (f->has_outer_ccb()) {
-    auto c = f->outer_ccb();
-    do {
-      if (try_edge(c, q)) return q;
-    } while (++c != f->outer_ccb());
-  }
-  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole) {
-    auto c = *hole;
-    do {
-      if (try_edge(c, q)) return q;
-    } while (++c != *hole);
-  }
+  if (f->has_outer_ccb() && pointBesideCycle(f, f->outer_ccb(), q)) return q;
+  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
+    if (pointBesideCycle(f, *hole, q)) return q;
   return f->outer_ccb()->source()->point();  // unreachable for faces of non-zero area
 }
 
 /// Signed area of a boundary cycle (counter-clockwise positive); edges walked both ways
 /// cancel.
-double cycleArea(Arrangement::Ccb_halfedge_const_circulator start) {
+double cycleArea(Ccb start) {
   double twice = 0;
   auto c = start;
   do {
@@ -110,25 +124,37 @@ double cycleArea(Arrangement::Ccb_halfedge_const_circulator start) {
   return 0.5 * twice;
 }
 
-}  // namespace
+/// The area of face f: its outer cycle less its holes.
+double faceArea(Face f) {
+  double area = f->has_outer_ccb() ? cycleArea(f->outer_ccb()) : 0;
+  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
+    area += cycleArea(*hole);  // holes wind clockwise: negative
+  return area;
+}
 
-ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts) {
-  // Exact rings (consecutive duplicates dropped) and the curves of the arrangement.
-  std::vector<std::vector<EK::Point_2>> rings;
-  std::vector<Traits::Curve_2> curves;
-  std::map<std::pair<double, double>, int> idOf;  // points whose id the caller knows
-  for (size_t r = 0; r < polygon.rings.size(); ++r) {
-    std::vector<EK::Point_2> ring;
-    for (size_t k = 0; k < polygon.rings[r].size(); ++k) {
-      const glm::dvec2& p = polygon.rings[r][k];
-      if (polygon.ids[r][k] >= 0) idOf[{p.x, p.y}] = polygon.ids[r][k];
-      if (ring.empty() || ring.back() != exact(p)) ring.push_back(exact(p));
-    }
-    while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
-    for (size_t k = 0; k < ring.size() && ring.size() >= 3; ++k)
-      curves.emplace_back(Segments::Curve_2(ring[k], ring[(k + 1) % ring.size()]), kRingEdge);
-    rings.push_back(std::move(ring));
+/// Ring r of the polygon in exact points, consecutive duplicates dropped; the ids it knows go
+/// into idOf.
+std::vector<EK::Point_2> exactRing(const Polygon2& polygon, size_t r, IdMap& idOf) {
+  std::vector<EK::Point_2> ring;
+  for (size_t k = 0; k < polygon.rings[r].size(); ++k) {
+    const glm::dvec2& p = polygon.rings[r][k];
+    if (polygon.ids[r][k] >= 0) idOf[{p.x, p.y}] = polygon.ids[r][k];
+    if (ring.empty() || ring.back() != exact(p)) ring.push_back(exact(p));
   }
+  while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
+  return ring;
+}
+
+/// The ring's edges as curves (none for fewer than three points).
+void addRingCurves(const std::vector<EK::Point_2>& ring, std::vector<Traits::Curve_2>& curves) {
+  for (size_t k = 0; k < ring.size() && ring.size() >= 3; ++k)
+    curves.emplace_back(Segments::Curve_2(ring[k], ring[(k + 1) % ring.size()]), kRingEdge);
+}
+
+/// The contact lines as curves, with their indices as data (points apart); their ends' ids
+/// go into idOf.
+void addContactCurves(const std::vector<ContactLine2>& contacts, IdMap& idOf,
+                      std::vector<Traits::Curve_2>& curves) {
   for (size_t i = 0; i < contacts.size(); ++i) {
     const ContactLine2& c = contacts[i];
     if (exact(c.a) == exact(c.b)) continue;
@@ -136,96 +162,141 @@ ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLi
     if (c.bId >= 0) idOf[{c.b.x, c.b.y}] = c.bId;
     curves.emplace_back(Segments::Curve_2(exact(c.a), exact(c.b)), int(i));
   }
-  Arrangement arr;
-  CGAL::insert(arr, curves.begin(), curves.end());
+}
 
-  // Which faces lie inside the polygon, and which of those the contacts enclose.
-  std::map<Face, bool> kept;
-  ContactCut out;
+/// How the edges around a face close it.
+struct Enclosure {
+  bool closed = true;  ///< every edge closes it
+  bool solid = false;  ///< some contact's solid side faces it
+  std::set<int> by;  ///< contacts whose solid side faces f
+};
+
+/// Notes the edges of one boundary cycle of f: an edge closes the face when a contact's
+/// solid side faces it, or when it is one of the polygon's edges and some surface stands on
+/// it.
+void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enclosure& e) {
+  auto h = start;
+  do {
+    if (h->twin()->face() == f) continue;  // a line inside the face
+    bool ring = false, standing = false, towards = false;
+    const glm::dvec2 dir = approx(h->target()->point()) - approx(h->source()->point());
+    for (int data : h->curve().data()) {
+      if (data == kRingEdge) {
+        ring = true;
+        continue;
+      }
+      const ContactLine2& c = contacts[size_t(data)];
+      standing = true;
+      bool faceOnLeft = glm::dot(dir, c.b - c.a) > 0;  // the face is left of h
+      if (c.solid != 0 && (c.solid > 0) == faceOnLeft) {
+        towards = true;
+        e.by.insert(data);
+      }
+    }
+    e.solid = e.solid || towards;
+    e.closed = e.closed && (towards || (ring && standing));
+  } while (++h != start);
+}
+
+/// How the contacts enclose face f.
+Enclosure enclosureOf(Face f, const std::vector<ContactLine2>& contacts) {
+  Enclosure e;
+  if (f->has_outer_ccb()) noteCycle(f, f->outer_ccb(), contacts, e);
+  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
+    noteCycle(f, *hole, contacts, e);
+  return e;
+}
+
+/// Which faces lie inside the polygon and are kept; those the contacts enclose are left out
+/// and recorded in `removed`.
+KeptFaces classifyFaces(const Arrangement& arr, const std::vector<std::vector<EK::Point_2>>& rings,
+                        const std::vector<ContactLine2>& contacts,
+                        std::vector<ContactCut::Removed>& removed) {
+  KeptFaces kept;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
-    if (f->is_unbounded()) {
+    if (f->is_unbounded() || !insideRings(rings, pointIn(f))) {
       kept[f] = false;
       continue;
     }
-    if (!insideRings(rings, pointIn(f))) {
-      kept[f] = false;
-      continue;
-    }
-    // An edge closes the face when a contact's solid side faces it, or when it is one of the
-    // polygon's edges and some surface stands on it.
-    bool closed = true, solid = false;
-    std::set<int> enclosing;
-    auto visit = [&](Arrangement::Ccb_halfedge_const_circulator start) {
-      auto h = start;
-      do {
-        if (h->twin()->face() == f) continue;  // a line inside the face
-        bool ring = false, standing = false, towards = false;
-        const glm::dvec2 dir = approx(h->target()->point()) - approx(h->source()->point());
-        for (int data : h->curve().data()) {
-          if (data == kRingEdge) {
-            ring = true;
-            continue;
-          }
-          const ContactLine2& c = contacts[size_t(data)];
-          standing = true;
-          bool faceOnLeft = glm::dot(dir, c.b - c.a) > 0;  // the face is left of h
-          if (c.solid != 0 && (c.solid > 0) == faceOnLeft) {
-            towards = true;
-            enclosing.insert(data);
-          }
-        }
-        solid = solid || towards;
-        closed = closed && (towards || (ring && standing));
-      } while (++h != start);
-    };
-    if (f->has_outer_ccb()) visit(f->outer_ccb());
-    for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole) visit(*hole);
-    bool hidden = closed && solid;
+    const Enclosure e = enclosureOf(f, contacts);
+    const bool hidden = e.closed && e.solid;
     kept[f] = !hidden;
-    if (hidden) {
-      double area = f->has_outer_ccb() ? cycleArea(f->outer_ccb()) : 0;
-      for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
-        area += cycleArea(*hole);  // holes wind clockwise: negative
-      out.removed.push_back({area, std::vector<int>(enclosing.begin(), enclosing.end())});
-    }
+    if (hidden) removed.push_back({faceArea(f), std::vector<int>(e.by.begin(), e.by.end())});
   }
+  return kept;
+}
 
-  auto idAt = [&](const EK::Point_2& p) {
-    glm::dvec2 q = approx(p);
-    auto it = idOf.find({q.x, q.y});
-    return it == idOf.end() ? -1 : it->second;
-  };
-  // Rings: the edges with a kept face on the left and a face left out (or outside) on the
-  // right, chained around their end points through the kept faces.
-  auto boundary = [&](Halfedge h) { return kept[h->face()] && !kept[h->twin()->face()]; };
+/// The caller's id of point p, or -1.
+int idAt(const IdMap& idOf, const EK::Point_2& p) {
+  glm::dvec2 q = approx(p);
+  auto it = idOf.find({q.x, q.y});
+  return it == idOf.end() ? -1 : it->second;
+}
+
+/// Whether h bounds what is kept: a kept face on its left, a face left out (or outside) on
+/// its right.
+bool keptBoundary(KeptFaces& kept, Halfedge h) { return kept[h->face()] && !kept[h->twin()->face()]; }
+
+/// Adds the ring of kept boundary edges through h, chained around their end points through
+/// the kept faces, to out; marks its edges done.
+void addKeptRing(KeptFaces& kept, const IdMap& idOf, Halfedge h, std::set<Halfedge>& done,
+                 ContactCut& out) {
+  std::vector<glm::dvec2> ring;
+  std::vector<int> ids;
+  std::vector<bool> contact;
+  Halfedge e = h;
+  do {
+    done.insert(e);
+    ring.push_back(approx(e->source()->point()));
+    ids.push_back(idAt(idOf, e->source()->point()));
+    const auto& data = e->curve().data();
+    contact.push_back(std::find(data.begin(), data.end(), kRingEdge) == data.end());
+    Halfedge next = e->next();
+    while (!keptBoundary(kept, next)) next = next->twin()->next();
+    e = next;
+  } while (e != h);
+  out.kept.rings.push_back(std::move(ring));
+  out.kept.ids.push_back(std::move(ids));
+  out.contactEdge.push_back(std::move(contact));
+}
+
+/// Rings: the boundaries of what is kept.
+void addKeptRings(const Arrangement& arr, KeptFaces& kept, const IdMap& idOf, ContactCut& out) {
   std::set<Halfedge> done;
-  for (auto h = arr.halfedges_begin(); h != arr.halfedges_end(); ++h) {
-    if (!boundary(h) || done.count(h)) continue;
-    std::vector<glm::dvec2> ring;
-    std::vector<int> ids;
-    std::vector<bool> contact;
-    Halfedge e = h;
-    do {
-      done.insert(e);
-      ring.push_back(approx(e->source()->point()));
-      ids.push_back(idAt(e->source()->point()));
-      const auto& data = e->curve().data();
-      contact.push_back(std::find(data.begin(), data.end(), kRingEdge) == data.end());
-      Halfedge next = e->next();
-      while (!boundary(next)) next = next->twin()->next();
-      e = next;
-    } while (e != Halfedge(h));
-    out.kept.rings.push_back(std::move(ring));
-    out.kept.ids.push_back(std::move(ids));
-    out.contactEdge.push_back(std::move(contact));
-  }
-  // Lines: edges with kept faces on both sides (contact lines that cut, or lie inside, what is
-  // kept).
+  for (auto h = arr.halfedges_begin(); h != arr.halfedges_end(); ++h)
+    if (keptBoundary(kept, h) && !done.count(h)) addKeptRing(kept, idOf, h, done, out);
+}
+
+/// Lines: edges with kept faces on both sides (contact lines that cut, or lie inside, what is
+/// kept).
+void addKeptLines(const Arrangement& arr, KeptFaces& kept, const IdMap& idOf, ContactCut& out) {
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     if (!kept[e->face()] || !kept[e->twin()->face()]) continue;
     out.kept.lines.push_back({approx(e->source()->point()), approx(e->target()->point())});
-    out.kept.lineIds.push_back({idAt(e->source()->point()), idAt(e->target()->point())});
+    out.kept.lineIds.push_back({idAt(idOf, e->source()->point()), idAt(idOf, e->target()->point())});
   }
+}
+
+}  // namespace
+
+ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts) {
+  // Exact rings (consecutive duplicates dropped) and the curves of the arrangement.
+  IdMap idOf;  // points whose id the caller knows
+  std::vector<std::vector<EK::Point_2>> rings;
+  std::vector<Traits::Curve_2> curves;
+  for (size_t r = 0; r < polygon.rings.size(); ++r) {
+    rings.push_back(exactRing(polygon, r, idOf));
+    addRingCurves(rings.back(), curves);
+  }
+  addContactCurves(contacts, idOf, curves);
+  Arrangement arr;
+  CGAL::insert(arr, curves.begin(), curves.end());
+  // Which faces lie inside the polygon, and which of those the contacts enclose.
+  ContactCut out;
+  KeptFaces kept = classifyFaces(arr, rings, contacts, out.removed);
+  // What is kept: its boundary rings, and the lines inside it.
+  addKeptRings(arr, kept, idOf, out);
+  addKeptLines(arr, kept, idOf, out);
   return out;
 }
 

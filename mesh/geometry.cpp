@@ -86,6 +86,12 @@ double maxPlaneDistance(const PlaneFrame& frame, const Ring& ring) {
   return d;
 }
 
+double segmentDistance(const glm::dvec2& q, const glm::dvec2& a, const glm::dvec2& b) {
+  const glm::dvec2 d = b - a;
+  const double t = std::clamp(glm::dot(q - a, d) / glm::dot(d, d), 0.0, 1.0);
+  return glm::length(a + d * t - q);
+}
+
 bool insideRing(const PlaneFrame& frame, const Ring& ring, const glm::dvec3& p) {
   glm::dvec2 q = frame.project(p);
   bool inside = false;

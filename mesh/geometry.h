@@ -49,6 +49,9 @@ double ringDiameter(const Ring& ring);
 /// The largest distance of a vertex of the ring from the frame's plane.
 double maxPlaneDistance(const PlaneFrame& frame, const Ring& ring);
 
+/// The distance from q to the segment from a to b (a != b).
+double segmentDistance(const glm::dvec2& q, const glm::dvec2& a, const glm::dvec2& b);
+
 /// Whether p, projected onto the frame's plane, lies strictly inside the projected ring.
 bool insideRing(const PlaneFrame& frame, const Ring& ring, const glm::dvec3& p);
 

@@ -1,0 +1,318 @@
+// Planar pieces ▸ elements, with the points on shared boundaries agreed between neighbours.
+//
+// Every boundary edge is first cut at the corners of other pieces that lie on it and then into
+// equal parts; the parts (segments) are keyed by their end points, so two pieces sharing an
+// edge compute the very same points on it. Delaunay refinement may still split a boundary
+// part (encroachment); such points are added to the shared segment and its other users are
+// meshed again until all agree.
+#include "mesh/boundary_agreement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/spatial_hash.h"
+
+namespace rad::meshing {
+namespace {
+
+/// Points on a boundary closer than this times the scene diagonal to an edge lie on it.
+constexpr double kOnEdgeTolerance = 1e-7;
+/// Meshing passes allowed for neighbouring pieces to agree on shared boundary points.
+constexpr int kMaxAgreementRounds = 200;
+
+/// A boundary part between two corners, cut at parameters t in (0, 1) from a to b (a < b).
+struct Segment {
+  int a = -1, b = -1;
+  std::vector<double> t;
+  std::vector<int> users;  ///< pieces whose boundary runs along it
+  bool fine = false;       ///< split finer (a contact line across a surface)
+};
+
+/// One edge of a piece's boundary chain: a segment, walked from a to b or back.
+struct ChainEdge {
+  int segment;
+  bool forward;
+};
+
+/// A piece's boundary as point ids, ring by ring and then line by line (lines with their last
+/// point too), and for each point the chain edge it starts.
+struct BoundaryIds {
+  std::vector<std::vector<int>> ids, edgeOf;
+};
+
+/// The ids, sorted and each once.
+std::vector<int> sortedUnique(std::vector<int> ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+/// The points (ids) in a hash of about 2 ∛n cells along the widest side of their box.
+SpatialHash pointHash(const PointTable& table, const std::vector<int>& ids) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (int i : ids) {
+    lo = glm::min(lo, table[i]);
+    hi = glm::max(hi, table[i]);
+  }
+  double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
+  int cells = std::clamp(int(2 * std::cbrt(double(ids.size()))), 1, 256);
+  SpatialHash hash(extent / cells * (1 + 1e-9), lo);
+  for (int i : ids) hash.insert(table[i], i);
+  return hash;
+}
+
+/// The index of the boundary edge of `poly` (rings, then lines) nearest to q, as
+/// {ring or line, edge}.
+std::pair<size_t, size_t> nearestEdge(const Polygon2& poly, const glm::dvec2& q) {
+  double best = HUGE_VAL;
+  std::pair<size_t, size_t> nearest{0, 0};
+  const size_t rings = poly.rings.size();
+  for (size_t c = 0; c < rings + poly.lines.size(); ++c) {
+    const auto& pts = c < rings ? poly.rings[c] : poly.lines[c - rings];
+    const size_t edges = c < rings ? pts.size() : pts.size() - 1;
+    for (size_t k = 0; k < edges; ++k) {
+      double dist = segmentDistance(q, pts[k], pts[(k + 1) % pts.size()]);
+      if (dist < best) best = dist, nearest = {c, k};
+    }
+  }
+  return nearest;
+}
+
+/// Meshes a set of pieces at one edge length so that shared boundaries agree.
+class PieceMesher {
+ public:
+  /// Edges in `fine` (point id pairs, lower first) are split into parts maxEdge / fineRatio.
+  PieceMesher(const Scene& scene, PointTable& table, const std::vector<Piece>& pieces,
+              double maxEdge, double tolerance, const std::set<std::pair<int, int>>& fine,
+              double fineRatio)
+      : scene_(scene), table_(table), pieces_(pieces), maxEdge_(maxEdge),
+        tolerance_(tolerance), fine_(fine), fineRatio_(fineRatio) {}
+
+  /// Triangles as point ids, per piece, and the agreement passes it took.
+  PieceTriangles run() {
+    PieceTriangles out;
+    cutBoundaries();
+    results_.resize(pieces_.size());
+    std::vector<bool> dirty(pieces_.size(), true);
+    out.rounds = 1;
+    while (meshDirty(dirty, out.rounds == kMaxAgreementRounds)) ++out.rounds;
+    out.triangles = std::move(results_);
+    out.unresolved = unresolved_;
+    return out;
+  }
+
+ private:
+  /// Meshes the pieces marked dirty, marking those whose shared points changed (unless this
+  /// is the last round); false when none was dirty or this was the last round.
+  bool meshDirty(std::vector<bool>& dirty, bool last) {
+    std::vector<int> todo;
+    for (size_t p = 0; p < pieces_.size(); ++p)
+      if (dirty[p]) todo.push_back(int(p));
+    if (todo.empty()) return false;
+    std::fill(dirty.begin(), dirty.end(), false);
+    for (int p : todo) meshPiece(p, last ? nullptr : &dirty);
+    return !last;
+  }
+
+  glm::dvec3 pointOn(const Segment& s, double t) const {
+    return table_[s.a] + (table_[s.b] - table_[s.a]) * t;
+  }
+
+  /// Every corner of every ring and line, each once.
+  std::vector<int> allCorners() const {
+    std::vector<int> corners;
+    for (const auto& piece : pieces_) {
+      for (const auto& ring : piece.rings) corners.insert(corners.end(), ring.begin(), ring.end());
+      for (const auto& line : piece.lines) corners.insert(corners.end(), line.begin(), line.end());
+    }
+    return sortedUnique(std::move(corners));
+  }
+
+  /// Cuts every ring edge at the ring corners of other pieces lying on it, then into parts
+  /// no longer than maxEdge.
+  void cutBoundaries() {
+    const SpatialHash grid = pointHash(table_, allCorners());
+    chains_.resize(pieces_.size());
+    for (size_t p = 0; p < pieces_.size(); ++p)
+      for (const auto& ring : pieces_[p].rings)
+        chains_[p].push_back(cutChain(int(p), ring, true, grid));
+    // Lines after the rings, as open chains.
+    for (size_t p = 0; p < pieces_.size(); ++p)
+      for (const auto& line : pieces_[p].lines)
+        chains_[p].push_back(cutChain(int(p), {line[0], line[1]}, false, grid));
+  }
+
+  /// The chain of segments along the points (ids) of piece p, closed for a ring.
+  std::vector<ChainEdge> cutChain(int piece, const std::vector<int>& points, bool closed,
+                                  const SpatialHash& grid) {
+    std::vector<ChainEdge> chain;
+    for (size_t k = 0; k + (closed ? 0 : 1) < points.size(); ++k)
+      cutEdge(piece, points[k], points[(k + 1) % points.size()], grid, chain);
+    return chain;
+  }
+
+  /// The corners lying on the edge from `from` to `to` (within the tolerance), as
+  /// (parameter along the edge, id), in order along it.
+  std::vector<std::pair<double, int>> cornersOn(int from, int to, const SpatialHash& grid) const {
+    glm::dvec3 a = table_[from], b = table_[to], d = b - a;
+    double len2 = glm::dot(d, d);
+    std::vector<std::pair<double, int>> cuts;
+    glm::dvec3 pad(tolerance_);
+    grid.visit(glm::min(a, b) - pad, glm::max(a, b) + pad, [&](int c) {
+      if (c == from || c == to) return;
+      double t = glm::dot(table_[c] - a, d) / len2;
+      if (t <= 0 || t >= 1) return;
+      if (glm::length(a + d * t - table_[c]) <= tolerance_) cuts.emplace_back(t, c);
+    });
+    std::sort(cuts.begin(), cuts.end());
+    return cuts;
+  }
+
+  /// Appends the edge from `from` to `to` of piece p to its chain, cut at the corners on it.
+  void cutEdge(int piece, int from, int to, const SpatialHash& grid, std::vector<ChainEdge>& chain) {
+    std::vector<std::pair<double, int>> cuts = cornersOn(from, to, grid);
+    int prev = from;
+    cuts.emplace_back(1.0, to);
+    const bool fine = fine_.count(std::minmax(from, to)) > 0;
+    for (const auto& [t, c] : cuts) {
+      if (c == prev) continue;
+      chain.push_back({segmentBetween(prev, c, piece, fine), prev < c});
+      prev = c;
+    }
+  }
+
+  /// Cuts s into equal parts no longer than the element edge (finer for a fine segment).
+  void splitEvenly(Segment& s) const {
+    double part = s.fine ? maxEdge_ / fineRatio_ : maxEdge_;
+    int n = std::max(1, int(std::ceil(glm::length(table_[s.b] - table_[s.a]) / part - 1e-9)));
+    s.t.clear();
+    for (int k = 1; k < n; ++k) s.t.push_back(double(k) / n);
+  }
+
+  /// The segment between points p and q (made when new), with `piece` among its users.
+  int segmentBetween(int p, int q, int piece, bool fine) {
+    auto key = std::minmax(p, q);
+    auto [it, added] = segmentIndex_.emplace(key, int(segments_.size()));
+    if (added) segments_.push_back(Segment{key.first, key.second, {}, {}, false});
+    Segment& s = segments_[it->second];
+    if (added || (fine && !s.fine)) {  // equal parts, finer if any user asks
+      s.fine = s.fine || fine;
+      splitEvenly(s);
+    }
+    if (s.users.empty() || s.users.back() != piece) s.users.push_back(piece);
+    return it->second;
+  }
+
+  /// Appends the points (ids) of the chain to `points`, each with the chain edge it starts;
+  /// an open chain (a line) ends with its last point.
+  void chainPoints(const std::vector<ChainEdge>& chain, bool open, std::vector<int>& points,
+                   std::vector<int>& edges) {
+    for (size_t k = 0; k < chain.size(); ++k) {
+      const Segment& s = segments_[chain[k].segment];
+      points.push_back(chain[k].forward ? s.a : s.b);
+      edges.push_back(int(k));
+      for (size_t j = 0; j < s.t.size(); ++j) {
+        double t = chain[k].forward ? s.t[j] : s.t[s.t.size() - 1 - j];
+        points.push_back(table_.id(pointOn(s, t)));
+        edges.push_back(int(k));
+      }
+    }
+    if (open && !chain.empty()) {
+      const Segment& s = segments_[chain.back().segment];
+      points.push_back(chain.back().forward ? s.b : s.a);
+      edges.push_back(int(chain.size()) - 1);
+    }
+  }
+
+  /// The boundary of piece p as point ids, ring by ring and then line by line.
+  BoundaryIds boundary(int p) {
+    BoundaryIds out;
+    const size_t rings = pieces_[p].rings.size();
+    for (size_t c = 0; c < chains_[p].size(); ++c) {
+      out.ids.emplace_back();
+      out.edgeOf.emplace_back();
+      chainPoints(chains_[p][c], c >= rings, out.ids.back(), out.edgeOf.back());
+    }
+    return out;
+  }
+
+  /// The boundary in the piece's 2D frame, rings and lines, with their ids.
+  Polygon2 boundaryPolygon(int p, const BoundaryIds& b) const {
+    const Piece& piece = pieces_[p];
+    const size_t rings = piece.rings.size();
+    Polygon2 poly;
+    for (size_t c = 0; c < b.ids.size(); ++c) {
+      std::vector<glm::dvec2> pts;
+      for (int id : b.ids[c]) pts.push_back(piece.frame.project(table_[id]));
+      (c < rings ? poly.rings : poly.lines).push_back(std::move(pts));
+      (c < rings ? poly.ids : poly.lineIds).push_back(b.ids[c]);
+    }
+    return poly;
+  }
+
+  /// Meshes piece p; points the mesher added on a shared boundary are shared (and their
+  /// segment's other users marked dirty) unless `dirty` is null (the last round).
+  void meshPiece(int p, std::vector<bool>* dirty) {
+    const Piece& piece = pieces_[p];
+    const BoundaryIds b = boundary(p);
+    const Polygon2 poly = boundaryPolygon(p, b);
+    const Triangulation2 tri =
+        meshPolygon(poly, maxEdge_, scene_.surfaces[size_t(piece.surface)].where, piece.meshFace);
+    std::vector<int> global(tri.points.size());
+    for (size_t i = 0; i < tri.points.size(); ++i) {
+      if (tri.ids[i] >= 0)
+        global[i] = tri.ids[i];
+      else if (tri.onBoundary[i] && dirty)
+        global[i] = addBoundaryPoint(p, poly, b.edgeOf, tri.points[i], *dirty);
+      else {
+        if (tri.onBoundary[i]) ++unresolved_;
+        global[i] = table_.id(piece.frame.lift(tri.points[i]));
+      }
+    }
+    auto& out = results_[p];
+    out.clear();
+    for (const auto& t : tri.triangles) out.push_back({global[t[0]], global[t[1]], global[t[2]]});
+  }
+
+  /// Registers a point the mesher put on piece p's boundary or on one of its lines with the
+  /// shared segment, and marks the segment's other users for meshing again.
+  int addBoundaryPoint(int p, const Polygon2& poly, const std::vector<std::vector<int>>& edgeOf,
+                       const glm::dvec2& q, std::vector<bool>& dirty) {
+    const auto [c, k] = nearestEdge(poly, q);
+    ChainEdge edge = chains_[p][c][size_t(edgeOf[c][k])];
+    Segment& s = segments_[edge.segment];
+    glm::dvec3 x = pieces_[p].frame.lift(q), d = table_[s.b] - table_[s.a];
+    double t = std::clamp(glm::dot(x - table_[s.a], d) / glm::dot(d, d), 1e-12, 1 - 1e-12);
+    s.t.insert(std::upper_bound(s.t.begin(), s.t.end(), t), t);
+    for (int user : s.users)
+      if (user != p) dirty[user] = true;
+    return table_.id(pointOn(s, t));
+  }
+
+  const Scene& scene_;
+  PointTable& table_;
+  const std::vector<Piece>& pieces_;
+  double maxEdge_, tolerance_;
+  const std::set<std::pair<int, int>>& fine_;
+  double fineRatio_;
+  std::vector<Segment> segments_;
+  std::map<std::pair<int, int>, int> segmentIndex_;
+  std::vector<std::vector<std::vector<ChainEdge>>> chains_;
+  std::vector<std::vector<std::array<int, 3>>> results_;
+  int unresolved_ = 0;
+};
+
+}  // namespace
+
+PieceTriangles meshPieces(const Scene& scene, const MeshSettings& settings, PointTable& table,
+                          const std::vector<Piece>& pieces,
+                          const std::set<std::pair<int, int>>& fine) {
+  PieceMesher mesher(scene, table, pieces, settings.maxElementEdge,
+                     kOnEdgeTolerance * scene.diagonal(), fine, settings.contactGrading);
+  return mesher.run();
+}
+
+}  // namespace rad::meshing

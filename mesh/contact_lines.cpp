@@ -1,0 +1,385 @@
+// Planar pieces ▸ pieces cut along contact lines, with what the contacts enclose left out.
+#include "mesh/contact_lines.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/contact_cutter.h"
+#include "mesh/spatial_hash.h"
+
+namespace rad::meshing {
+namespace {
+
+/// Surfaces closer than this times the scene diagonal touch.
+constexpr double kContactTolerance = 1e-5;
+/// Parts cut away that are smaller than this share of their piece are round-off (slivers
+/// between nearly coincident lines) and go unreported.
+constexpr double kNegligibleCut = 1e-9;
+
+/// One stretch of a contact line, in 3D; ends that are vertices of the touching piece keep
+/// their ids.
+struct Contact3 {
+  glm::dvec3 a, b;
+  int aId = -1, bId = -1;
+};
+
+/// True when q, a point of s's plane, lies inside piece s or within `tolerance` of its border.
+bool insideOrOn(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
+  const glm::dvec2 x = s.frame.project(q);
+  bool inside = false;
+  for (const auto& ring : s.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const glm::dvec2 a = s.frame.project(table[ring[k]]);
+      const glm::dvec2 b = s.frame.project(table[ring[(k + 1) % ring.size()]]);
+      if (segmentDistance(x, a, b) <= tolerance) return true;
+      const glm::dvec2 d = b - a;
+      if ((a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * d.x / d.y) inside = !inside;
+    }
+  return inside;
+}
+
+/// The points of piece s's border in the plane of piece r (within `tolerance`): its corners
+/// there (with their ids) and where its edges cross the plane (id -1); and the range [lo, hi]
+/// of signed distances of its corners from that plane.
+std::vector<std::pair<glm::dvec3, int>> pointsInPlane(const PointTable& table, const Piece& r,
+                                                      const Piece& s, double tolerance,
+                                                      double& lo, double& hi) {
+  std::vector<std::pair<glm::dvec3, int>> on;
+  const glm::dvec3& nr = r.frame.normal;
+  for (const auto& ring : s.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const glm::dvec3 &p = table[ring[k]], &q = table[ring[(k + 1) % ring.size()]];
+      const double dp = glm::dot(nr, p - r.frame.origin), dq = glm::dot(nr, q - r.frame.origin);
+      lo = std::min(lo, dp);
+      hi = std::max(hi, dp);
+      if (std::abs(dp) <= tolerance) on.push_back({p, ring[k]});
+      if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance))
+        on.push_back({p + (q - p) * (dp / (dp - dq)), -1});
+    }
+  return on;
+}
+
+/// The stretches between consecutive points (sorted along the line) whose middles lie in s,
+/// joined where they meet.
+std::vector<Contact3> stretchesIn(const PointTable& table, const Piece& s,
+                                  const std::vector<std::pair<glm::dvec3, int>>& on,
+                                  double tolerance) {
+  std::vector<Contact3> out;
+  for (size_t i = 0; i + 1 < on.size(); ++i) {
+    const glm::dvec3 &p = on[i].first, &q = on[i + 1].first;
+    if (glm::length(q - p) <= tolerance || !insideOrOn(table, s, (p + q) * 0.5, tolerance)) continue;
+    if (!out.empty() && glm::length(out.back().b - p) <= tolerance) {
+      out.back().b = q;
+      out.back().bId = on[i + 1].second;
+    } else {
+      out.push_back({p, q, on[i].second, on[i + 1].second});
+    }
+  }
+  return out;
+}
+
+/// Where piece s meets the plane of piece r, if s reaches r's lit side (either side when r is
+/// two-sided) and touches or pierces the plane within `tolerance`: the stretches of the line of
+/// the two planes that lie in s (one per stretch, so a wall with a doorway standing on a floor
+/// gives two).
+std::vector<Contact3> contactsOf(const PointTable& table, const Piece& r, bool rTwoSided,
+                                 const Piece& s, double tolerance) {
+  const glm::dvec3 &nr = r.frame.normal, &ns = s.frame.normal;
+  if (std::abs(glm::dot(nr, ns)) > 1 - 1e-9) return {};  // parallel planes
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  auto on = pointsInPlane(table, r, s, tolerance, lo, hi);
+  const bool lit = hi > tolerance || (rTwoSided && lo < -tolerance);
+  if (!lit || lo > tolerance || hi < -tolerance || on.size() < 2) return {};
+  const glm::dvec3 along = glm::normalize(glm::cross(nr, ns));
+  std::sort(on.begin(), on.end(), [&](const auto& x, const auto& y) {
+    return glm::dot(along, x.first) < glm::dot(along, y.first);
+  });
+  return stretchesIn(table, s, on, tolerance);
+}
+
+/// An axis-aligned box.
+struct Box {
+  glm::dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};
+};
+
+/// Whether the boxes overlap.
+bool boxesMeet(const Box& a, const Box& b) {
+  return !glm::any(glm::lessThan(b.hi, a.lo)) && !glm::any(glm::lessThan(a.hi, b.lo));
+}
+
+/// Each piece's bounding box, grown by `pad`.
+std::vector<Box> paddedBoxes(const PointTable& table, const std::vector<Piece>& pieces, double pad) {
+  std::vector<Box> boxes(pieces.size());
+  for (size_t p = 0; p < pieces.size(); ++p)
+    for (const auto& ring : pieces[p].rings)
+      for (int id : ring) {
+        boxes[p].lo = glm::min(boxes[p].lo, table[id] - pad);
+        boxes[p].hi = glm::max(boxes[p].hi, table[id] + pad);
+      }
+  return boxes;
+}
+
+/// The pieces' boxes in a hash over the scene's box cut into cells × cells × cells cells
+/// (each axis divided alike, so cells are boxes, not cubes): the hash works in those grid
+/// coordinates. Candidates come cell by cell in x, y, z order, which orders the contact lines
+/// and so decides which new point is made first.
+class PieceBoxes {
+ public:
+  explicit PieceBoxes(const std::vector<Box>& boxes)
+      : boxes_(boxes), cells_(std::clamp(int(2 * std::cbrt(double(boxes.size()))), 1, 64)) {
+    Box scene;
+    for (const Box& b : boxes) scene.lo = glm::min(scene.lo, b.lo), scene.hi = glm::max(scene.hi, b.hi);
+    lo_ = scene.lo;
+    cell_ = glm::max((scene.hi - scene.lo) / double(cells_), glm::dvec3(1e-300));
+    for (size_t p = 0; p < boxes.size(); ++p) hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
+  }
+
+  /// Calls f(s) for every piece s filed in a cell that piece p's box touches (s may come
+  /// more than once).
+  template <class F>
+  void visit(size_t p, F&& f) const {
+    hash_.visit(grid(boxes_[p].lo), grid(boxes_[p].hi), f);
+  }
+
+ private:
+  /// x in grid coordinates, clamped to the grid.
+  glm::dvec3 grid(const glm::dvec3& x) const {
+    return glm::clamp((x - lo_) / cell_, 0.0, double(cells_ - 1));
+  }
+
+  const std::vector<Box>& boxes_;
+  int cells_;
+  glm::dvec3 lo_{0.0}, cell_{1.0};
+  SpatialHash hash_{1.0};
+};
+
+/// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts
+/// come from the uncut pieces), their boxes padded by the tolerance, and the points made.
+struct Context {
+  Context(const Scene& scene, PointTable& table, const std::vector<Piece>& pieces)
+      : scene(scene), table(table), original(pieces),
+        tolerance(kContactTolerance * scene.diagonal()),
+        box(paddedBoxes(table, pieces, tolerance)), boxes(box), made(tolerance),
+        stamp(pieces.size(), -1) {}
+
+  const Scene& scene;
+  PointTable& table;
+  const std::vector<Piece> original;
+  const double tolerance;
+  const std::vector<Box> box;  ///< per piece
+  PieceBoxes boxes;
+  SpatialHash made;        ///< points the cuts made, in cells of the tolerance
+  std::vector<int> stamp;  ///< the last piece each piece was a candidate for
+};
+
+/// The pieces whose boxes meet piece r's, each once.
+std::vector<int> candidates(Context& cx, size_t r) {
+  std::vector<int> out;
+  cx.boxes.visit(r, [&](int s) {
+    if (s == int(r) || cx.stamp[size_t(s)] == int(r)) return;
+    cx.stamp[size_t(s)] = int(r);
+    if (boxesMeet(cx.box[r], cx.box[size_t(s)])) out.push_back(s);
+  });
+  return out;
+}
+
+/// Takes point `id` at p as the nearest to x so far if it is no farther than `best`.
+void takeIfNearer(const glm::dvec3& p, int id, const glm::dvec3& x, double& best, int& found) {
+  if (glm::length(p - x) <= best) best = glm::length(p - x), found = id;
+}
+
+/// The id of a new point x: a corner of piece r or s, or a point made earlier, within the
+/// tolerance (so that both pieces at a contact share their points); else x, made now.
+int snap(Context& cx, const glm::dvec3& x, size_t r, size_t s) {
+  int found = -1;
+  double best = cx.tolerance;
+  for (size_t p : {r, s})
+    for (const auto& ring : cx.original[p].rings)
+      for (int id : ring) takeIfNearer(cx.table[id], id, x, best, found);
+  const glm::dvec3 pad(cx.tolerance);
+  cx.made.visit(x - pad, x + pad, [&](int id) { takeIfNearer(cx.table[id], id, x, best, found); });
+  if (found >= 0) return found;
+  const int id = cx.table.id(x);
+  cx.made.insert(x, id);
+  return id;
+}
+
+/// Which side of the line the solid side of s (behind it) lies on in r's frame: +1 left, -1
+/// right; 0 when light may be on both sides of s or of r.
+int solidSide(const Context& cx, size_t r, size_t s, const ContactLine2& line) {
+  const Piece &pr = cx.original[r], &ps = cx.original[s];
+  if (cx.scene.surfaces[size_t(pr.surface)].twoSided || cx.scene.surfaces[size_t(ps.surface)].twoSided)
+    return 0;
+  const glm::dvec3 &nr = pr.frame.normal, &ns = ps.frame.normal;
+  const glm::dvec3 behind = -(ns - glm::dot(ns, nr) * nr);
+  const glm::dvec2 w(glm::dot(behind, pr.frame.u), glm::dot(behind, pr.frame.v));
+  const glm::dvec2 d = line.b - line.a;
+  return glm::dot(w, glm::dvec2(-d.y, d.x)) > 0 ? 1 : -1;
+}
+
+/// The contact c of piece s with piece r as a line in r's frame, its ends snapped.
+ContactLine2 contactLine(Context& cx, size_t r, size_t s, const Contact3& c) {
+  const PlaneFrame& frame = cx.original[r].frame;
+  ContactLine2 line;
+  line.aId = c.aId >= 0 ? c.aId : snap(cx, c.a, r, s);
+  line.bId = c.bId >= 0 ? c.bId : snap(cx, c.b, r, s);
+  line.a = frame.project(cx.table[line.aId]);
+  line.b = frame.project(cx.table[line.bId]);
+  line.solid = solidSide(cx, r, s, line);
+  return line;
+}
+
+/// The contact lines on piece r, with the surface each comes from.
+struct Lines {
+  std::vector<ContactLine2> lines;
+  std::vector<int> from;
+};
+
+/// Where other pieces touch or pierce piece r.
+Lines contactLinesOf(Context& cx, size_t r) {
+  Lines out;
+  const bool twoSided = cx.scene.surfaces[size_t(cx.original[r].surface)].twoSided;
+  for (int s : candidates(cx, r))
+    for (const Contact3& c : contactsOf(cx.table, cx.original[r], twoSided, cx.original[size_t(s)], cx.tolerance)) {
+      // Only lines that come near the piece (a floor's plane crosses every face of a mesh
+      // standing on it, far from most of them).
+      if (!boxesMeet(cx.box[r], Box{glm::min(c.a, c.b), glm::max(c.a, c.b)})) continue;
+      out.lines.push_back(contactLine(cx, r, size_t(s), c));
+      out.from.push_back(cx.original[size_t(s)].surface);
+    }
+  return out;
+}
+
+/// Whether the line runs along one of piece r's own edges.
+bool alongEdge(const Context& cx, size_t r, const ContactLine2& line) {
+  const Piece& piece = cx.original[r];
+  for (const auto& ring : piece.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const glm::dvec2 a = piece.frame.project(cx.table[ring[k]]);
+      const glm::dvec2 b = piece.frame.project(cx.table[ring[(k + 1) % ring.size()]]);
+      if (segmentDistance(line.a, a, b) <= cx.tolerance &&
+          segmentDistance(line.b, a, b) <= cx.tolerance)
+        return true;
+    }
+  return false;
+}
+
+/// Whether the line's solid side faces into piece r.
+bool solidInwards(const Context& cx, size_t r, const ContactLine2& line) {
+  if (line.solid == 0) return false;
+  const glm::dvec2 d = line.b - line.a, left(-d.y, d.x);
+  const glm::dvec2 probe = (line.a + line.b) * 0.5 + left * (1e-3 * line.solid);
+  return insideOrOn(cx.table, cx.original[r], cx.original[r].frame.lift(probe), 0.0);
+}
+
+/// Lines along the piece's own edges (a wall standing on a floor's edge, a mesh's folds)
+/// cut nothing; unless one has its solid side inwards (the piece may lie under a block),
+/// no arrangement is needed.
+bool cutsNothing(const Context& cx, size_t r, const std::vector<ContactLine2>& lines) {
+  return std::all_of(lines.begin(), lines.end(), [&](const auto& l) { return alongEdge(cx, r, l); }) &&
+         std::none_of(lines.begin(), lines.end(), [&](const auto& l) { return solidInwards(cx, r, l); });
+}
+
+/// The id of point q of the cut in piece r's frame: the cut's own id, or a snapped one.
+int idOf(Context& cx, size_t r, const glm::dvec2& q, int id) {
+  return id >= 0 ? id : snap(cx, cx.original[r].frame.lift(q), r, r);
+}
+
+/// Kept ring k of the cut as point ids, repeated points dropped.
+std::vector<int> keptRing(Context& cx, size_t r, const ContactCut& cut, size_t k) {
+  std::vector<int> ring;
+  for (size_t i = 0; i < cut.kept.rings[k].size(); ++i) {
+    int id = idOf(cx, r, cut.kept.rings[k][i], cut.kept.ids[k][i]);
+    if (ring.empty() || ring.back() != id) ring.push_back(id);
+  }
+  while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
+  return ring;
+}
+
+/// Adds the edges of kept ring k that are contact lines to `across`.
+void addAcrossEdges(Context& cx, size_t r, const ContactCut& cut, size_t k,
+                    std::set<std::pair<int, int>>& across) {
+  const size_t m = cut.kept.rings[k].size();
+  for (size_t i = 0; i < m; ++i)
+    if (cut.contactEdge[k][i]) {
+      int p = idOf(cx, r, cut.kept.rings[k][i], cut.kept.ids[k][i]);
+      int q = idOf(cx, r, cut.kept.rings[k][(i + 1) % m], cut.kept.ids[k][(i + 1) % m]);
+      if (p != q) across.insert(std::minmax(p, q));
+    }
+}
+
+/// Piece r becomes what the cut kept: its rings, and the contact lines inside as lines
+/// (added to `across` too).
+void keepCut(Context& cx, size_t r, const ContactCut& cut, Piece& piece,
+             std::set<std::pair<int, int>>& across) {
+  piece.rings.clear();
+  for (size_t k = 0; k < cut.kept.rings.size(); ++k) {
+    std::vector<int> ring = keptRing(cx, r, cut, k);
+    addAcrossEdges(cx, r, cut, k, across);
+    if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
+  }
+  for (size_t k = 0; k < cut.kept.lines.size(); ++k) {
+    int p = idOf(cx, r, cut.kept.lines[k][0], cut.kept.lineIds[k][0]);
+    int q = idOf(cx, r, cut.kept.lines[k][1], cut.kept.lineIds[k][1]);
+    if (p != q) {
+      piece.lines.push_back({p, q});
+      across.insert(std::minmax(p, q));
+    }
+  }
+}
+
+/// The signed area of the polygon's rings (counter-clockwise positive).
+double ringsArea(const Polygon2& poly) {
+  double area = 0;
+  for (const auto& ring : poly.rings)
+    for (size_t k = 0; k < ring.size(); ++k)
+      area += 0.5 * (ring[k].x * ring[(k + 1) % ring.size()].y - ring[(k + 1) % ring.size()].x * ring[k].y);
+  return area;
+}
+
+/// Records the parts of a piece of surface `surface` (`poly` before the cut) that the cut
+/// left out, slivers apart, each with the surfaces that enclosed it.
+void recordCutAway(const ContactCut& cut, const Polygon2& poly, int surface,
+                   const std::vector<int>& from, std::vector<CutAway>& cutAway) {
+  const double pieceArea = ringsArea(poly);
+  for (const auto& removed : cut.removed) {
+    if (removed.area <= kNegligibleCut * std::abs(pieceArea)) continue;  // a sliver between lines
+    CutAway c{surface, removed.area, {}};
+    for (int k : removed.by) c.enclosedBy.push_back(from[size_t(k)]);
+    std::sort(c.enclosedBy.begin(), c.enclosedBy.end());
+    c.enclosedBy.erase(std::unique(c.enclosedBy.begin(), c.enclosedBy.end()), c.enclosedBy.end());
+    cutAway.push_back(std::move(c));
+  }
+}
+
+/// Drops the pieces with no ring left.
+void dropEmpty(std::vector<Piece>& pieces) {
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
+                              [](const Piece& p) { return p.rings.empty(); }),
+               pieces.end());
+}
+
+}  // namespace
+
+ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces) {
+  Context cx(scene, table, pieces);  // the uncut pieces, indexed by box
+  ContactCuts out;
+  for (size_t r = 0; r < pieces.size(); ++r) {
+    // Find where other pieces touch or pierce piece r.
+    const Lines found = contactLinesOf(cx, r);
+    out.lines += int(found.lines.size());
+    if (cutsNothing(cx, r, found.lines)) continue;
+    // Cut it along them, leaving out what they enclose.
+    const Polygon2 poly = projectedRings(table, pieces[r]);
+    const ContactCut cut = cutAlongContacts(poly, found.lines);
+    // Take back what is kept, as point ids, and say what was left out.
+    keepCut(cx, r, cut, pieces[r], out.across);
+    recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);
+  }
+  dropEmpty(pieces);
+  return out;
+}
+
+}  // namespace rad::meshing

@@ -1,0 +1,161 @@
+// Elements ▸ patches ▸ the PatchMesh: OpenMesh faces with their surface, side, patch, area
+// and materials.
+#include "mesh/patch_assembly.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/geometry.h"
+#include "mesh/patch_growth.h"
+
+namespace rad::meshing {
+namespace {
+
+/// Fills a PatchMesh with the elements of the pieces, patch by patch, one vertex set per
+/// surface side.
+class Assembler {
+ public:
+  Assembler(const Scene& scene, const PointTable& table, const std::vector<Piece>& pieces,
+            const PieceTriangles& elements,
+            const std::vector<std::vector<std::vector<int>>>& patchesOfPiece, PatchMesh& out)
+      : scene_(scene), table_(table), pieces_(pieces), elements_(elements),
+        patchesOfPiece_(patchesOfPiece), out_(out) {}
+
+  /// Adds every side of surface s: its pieces' patches.
+  void addSurface(int s, const std::vector<int>& pieces) {
+    for (int side = 0; side < (scene_.surfaces[size_t(s)].twoSided ? 2 : 1); ++side) {
+      vertexOf_.clear();
+      for (int piece : pieces)
+        for (const auto& group : patchesOfPiece_[size_t(piece)]) addPatch(s, side, piece, group);
+    }
+  }
+
+  /// Faces on non-manifold edges that got their own vertices.
+  int nonManifold() const { return nonManifold_; }
+
+ private:
+  /// The vertex of point `id` on the current surface side, made when new.
+  TriMesh::VertexHandle vertex(int id) {
+    auto it = vertexOf_.find(id);
+    if (it != vertexOf_.end()) return it->second;
+    auto v = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[id]));
+    vertexOf_[id] = v;
+    return v;
+  }
+
+  /// The face on points t (ids), sharing the side's vertices; on non-manifold input (mesh
+  /// files) a face with its own corners. Vertices are made last corner first: the numbering
+  /// results have always had.
+  TriMesh::FaceHandle addFace(const std::array<int, 3>& t) {
+    const auto c = vertex(t[2]), b = vertex(t[1]), a = vertex(t[0]);
+    auto f = out_.mesh.add_face(a, b, c);
+    if (f.is_valid()) return f;
+    ++nonManifold_;
+    const auto c2 = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[t[2]]));
+    const auto b2 = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[t[1]]));
+    const auto a2 = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[t[0]]));
+    return out_.mesh.add_face(a2, b2, c2);
+  }
+
+  /// Adds triangle t (ids, turned for the side) of the patch as an element, unless it has no
+  /// area (never after Delaunay refinement; never add zero area).
+  void addElement(std::array<int, 3> t, const glm::dvec3& normal, Patch& patch) {
+    if (patch.side) std::swap(t[1], t[2]);
+    const glm::dvec3 a = table_[t[0]], b = table_[t[1]], c = table_[t[2]];
+    const double area = triangleArea(a, b, c);
+    if (!(area > 0)) return;
+    const int e = addFace(t).idx();
+    const Material& material = scene_.materials[size_t(scene_.surfaces[size_t(patch.surface)].material)];
+    out_.setElement(e, patch.surface, patch.side, area, material.reflectance, material.emission, normal);
+    out_.setPatch(e, int(out_.patches.size()));
+    patch.elements.push_back(e);
+    patch.area += area;
+    patch.centroid += area * (a + b + c) / 3.0;
+    noteElement(a, b, c);
+  }
+
+  /// The smallest angle and longest edge so far, for the stats.
+  void noteElement(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    MeshStats& st = out_.stats;
+    st.minAngleDeg = std::min({st.minAngleDeg, angleDeg(a, b, c), angleDeg(b, c, a), angleDeg(c, a, b)});
+    st.maxEdge = std::max({st.maxEdge, glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+  }
+
+  /// Adds the patch of piece `piece` made of its triangles `group` on one side of surface s.
+  void addPatch(int s, int side, int piece, const std::vector<int>& group) {
+    Patch patch;
+    patch.surface = s;
+    patch.side = side;
+    const glm::dvec3 normal = pieces_[size_t(piece)].frame.normal * (side ? -1.0 : 1.0);
+    std::vector<int> points;
+    for (int k : group) {
+      const auto& t = elements_.triangles[size_t(piece)][size_t(k)];
+      points.insert(points.end(), t.begin(), t.end());
+      addElement(t, normal, patch);
+    }
+    if (patch.elements.empty()) return;
+    patch.centroid /= patch.area;
+    patch.normal = normal;
+    patch.diameter = diameter(table_, convexHull(table_, pieces_[size_t(piece)].frame, points));
+    countPatch(patch);
+    out_.patches.push_back(std::move(patch));
+  }
+
+  /// Adds the patch to its surface's totals and the stats.
+  void countPatch(const Patch& patch) {
+    out_.stats.maxPatchDiameter = std::max(out_.stats.maxPatchDiameter, patch.diameter);
+    SurfaceSummary& summary = out_.surfaces[size_t(patch.surface)];
+    if (patch.side == 0) summary.area += patch.area;
+    summary.elements += int(patch.elements.size());
+    summary.patches += 1;
+  }
+
+  const Scene& scene_;
+  const PointTable& table_;
+  const std::vector<Piece>& pieces_;
+  const PieceTriangles& elements_;
+  const std::vector<std::vector<std::vector<int>>>& patchesOfPiece_;
+  PatchMesh& out_;
+  std::unordered_map<int, TriMesh::VertexHandle> vertexOf_;  ///< on the current side
+  int nonManifold_ = 0;
+};
+
+/// The patches of each piece, as triangle indices.
+std::vector<std::vector<std::vector<int>>> patchesOfPieces(const PointTable& table,
+                                                           const std::vector<Piece>& pieces,
+                                                           const PieceTriangles& elements,
+                                                           double maxPatchEdge) {
+  std::vector<std::vector<std::vector<int>>> patches(pieces.size());
+  for (size_t p = 0; p < pieces.size(); ++p)
+    patches[p] = growPatches(table, pieces[p].frame, elements.triangles[p], maxPatchEdge);
+  return patches;
+}
+
+/// Vertex normals: area-weighted mean of the adjacent element normals.
+void setVertexNormals(PatchMesh& out) {
+  for (auto v : out.mesh.vertices()) {
+    OpenMesh::Vec3d n(0, 0, 0);
+    for (auto f : out.mesh.vf_range(v)) n += out.mesh.normal(f) * out.area(f.idx());
+    out.mesh.set_normal(v, n.normalized());
+  }
+}
+
+}  // namespace
+
+void assemblePatchMesh(const Scene& scene, const PointTable& table,
+                       const std::vector<Piece>& pieces, const PieceTriangles& elements,
+                       double maxPatchEdge, PatchMesh& out) {
+  const auto patchesOfPiece = patchesOfPieces(table, pieces, elements, maxPatchEdge);
+  std::vector<std::vector<int>> piecesOfSurface(scene.surfaces.size());
+  for (size_t p = 0; p < pieces.size(); ++p) piecesOfSurface[size_t(pieces[p].surface)].push_back(int(p));
+  Assembler assembler(scene, table, pieces, elements, patchesOfPiece, out);
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) assembler.addSurface(int(s), piecesOfSurface[s]);
+  if (assembler.nonManifold())
+    out.warnings.push_back("meshing: " + std::to_string(assembler.nonManifold()) +
+                           " faces on non-manifold edges got their own vertices");
+  setVertexNormals(out);
+}
+
+}  // namespace rad::meshing
