@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/error.h"
+#include "mesh/spatial_hash.h"
 
 namespace rad {
 namespace {
@@ -33,6 +34,56 @@ Mesh::EdgeHandle longest(const Mesh& m, Mesh::FaceHandle f) {
     if (l > most || (l == most && e.idx() < best.idx())) most = l, best = e;
   }
   return best;
+}
+
+/// The mean length of the mesh's edges (0 without edges).
+double meanEdgeLength(const Mesh& m) {
+  double sum = 0;
+  for (auto e : m.edges()) sum += std::sqrt(squaredLength(m, e));
+  return sum / double(std::max<size_t>(1, m.n_edges()));
+}
+
+/// Each vertex's surface side (surface * 2 + side), -1 for a vertex of no element.
+std::vector<int> vertexSides(const PatchMesh& pm) {
+  std::vector<int> side(pm.mesh.n_vertices(), -1);
+  for (auto v : pm.mesh.vertices())
+    for (auto f : pm.mesh.vf_range(v)) {
+      side[size_t(v.idx())] = pm.surface(f.idx()) * 2 + pm.side(f.idx());
+      break;
+    }
+  return side;
+}
+
+/// Adds the vertices of v's side in v's cell (after v) within `distance` of it.
+void addCoincident(const Mesh& m, const SpatialHash& grid, const std::vector<int>& side,
+                   Mesh::VertexHandle v, double distance, std::vector<TJunction>& out) {
+  const glm::dvec3 p = PatchMesh::toGlm(m.point(v));
+  grid.visit(p, p, [&](int w) {
+    if (w <= v.idx() || side[size_t(w)] != side[size_t(v.idx())]) return;
+    if ((m.point(Mesh::VertexHandle(w)) - m.point(v)).norm() <= distance)
+      out.push_back({w, v.idx(), v.idx()});
+  });
+}
+
+/// Adds the vertices (of the edge's side, when `side` is given) inside edge e: within
+/// `tolerance` of it, relative to its length, and not near its ends.
+void addInsideEdge(const Mesh& m, const SpatialHash& grid, const std::vector<int>* side,
+                   Mesh::EdgeHandle e, double tolerance, std::vector<TJunction>& out) {
+  auto h = m.halfedge_handle(e, 0);
+  auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+  const auto pa = m.point(a), pb = m.point(b);
+  const auto d = pb - pa;
+  const double len2 = d.sqrnorm();
+  if (!(len2 > 0)) return;
+  const glm::dvec3 ga = PatchMesh::toGlm(pa), gb = PatchMesh::toGlm(pb);
+  grid.visit(glm::min(ga, gb), glm::max(ga, gb), [&](int w) {
+    if (w == a.idx() || w == b.idx() || (side && (*side)[size_t(w)] != (*side)[size_t(a.idx())])) return;
+    const auto pw = m.point(Mesh::VertexHandle(w));
+    const double t = ((pw - pa) | d) / len2;
+    if (t <= tolerance || t >= 1 - tolerance) return;
+    const double off = (pw - (pa + d * t)).norm();
+    if (off <= tolerance * std::sqrt(len2)) out.push_back({w, a.idx(), b.idx()});
+  });
 }
 
 /// Exact positions, bit for bit: where surfaces meet, their vertices were made from the same
@@ -167,64 +218,17 @@ std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance, boo
   const Mesh& m = pm.mesh;
   std::vector<TJunction> out;
   if (m.n_vertices() == 0) return out;
-  // Vertices by surface side, in a grid of cells about one mean edge wide.
-  double meanEdge = 0;
-  for (auto e : m.edges()) meanEdge += std::sqrt(squaredLength(m, e));
-  meanEdge /= double(std::max<size_t>(1, m.n_edges()));
+  // Vertices by surface side, in a hash of cells about one mean edge wide.
+  const double meanEdge = meanEdgeLength(m);
   const double cell = meanEdge > 0 ? meanEdge : 1.0;
-  auto sideOf = [&](Mesh::VertexHandle v) {
-    for (auto f : m.vf_range(v)) return pm.surface(f.idx()) * 2 + pm.side(f.idx());
-    return -1;
-  };
-  std::vector<int> side(m.n_vertices());
-  for (auto v : m.vertices()) side[v.idx()] = sideOf(v);
-  auto cellKey = [&](int64_t x, int64_t y, int64_t z) {
-    return (uint64_t(x) * 73856093u) ^ (uint64_t(y) * 19349663u) ^ (uint64_t(z) * 83492791u);
-  };
-  auto cellOf = [&](const OpenMesh::Vec3d& p) {
-    return std::array<int64_t, 3>{int64_t(std::floor(p[0] / cell)), int64_t(std::floor(p[1] / cell)),
-                                  int64_t(std::floor(p[2] / cell))};
-  };
-  std::unordered_multimap<uint64_t, int> grid;
-  for (auto v : m.vertices()) {
-    auto c = cellOf(m.point(v));
-    grid.emplace(cellKey(c[0], c[1], c[2]), v.idx());
-  }
+  const std::vector<int> side = vertexSides(pm);
+  SpatialHash grid(cell);
+  for (auto v : m.vertices()) grid.insert(PatchMesh::toGlm(m.point(v)), v.idx());
   // Coincident vertices of one side.
-  for (auto v : m.vertices()) {
-    auto c = cellOf(m.point(v));
-    auto [lo, hi] = grid.equal_range(cellKey(c[0], c[1], c[2]));
-    for (auto it = lo; it != hi; ++it) {
-      int w = it->second;
-      if (w <= v.idx() || side[w] != side[v.idx()]) continue;
-      if ((m.point(Mesh::VertexHandle(w)) - m.point(v)).norm() <= tolerance * cell)
-        out.push_back({w, v.idx(), v.idx()});
-    }
-  }
+  for (auto v : m.vertices()) addCoincident(m, grid, side, v, tolerance * cell, out);
   // Vertices inside edges: visit the cells the edge's bounding box covers.
-  for (auto e : m.edges()) {
-    auto h = m.halfedge_handle(e, 0);
-    auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
-    const auto pa = m.point(a), pb = m.point(b);
-    const auto d = pb - pa;
-    const double len2 = d.sqrnorm();
-    if (!(len2 > 0)) continue;
-    auto ca = cellOf(pa), cb = cellOf(pb);
-    for (int64_t x = std::min(ca[0], cb[0]); x <= std::max(ca[0], cb[0]); ++x)
-      for (int64_t y = std::min(ca[1], cb[1]); y <= std::max(ca[1], cb[1]); ++y)
-        for (int64_t z = std::min(ca[2], cb[2]); z <= std::max(ca[2], cb[2]); ++z) {
-          auto [lo, hi] = grid.equal_range(cellKey(x, y, z));
-          for (auto it = lo; it != hi; ++it) {
-            int w = it->second;
-            if (w == a.idx() || w == b.idx() || (!acrossSurfaces && side[w] != side[a.idx()])) continue;
-            const auto pw = m.point(Mesh::VertexHandle(w));
-            const double t = ((pw - pa) | d) / len2;
-            if (t <= tolerance || t >= 1 - tolerance) continue;
-            const double off = (pw - (pa + d * t)).norm();
-            if (off <= tolerance * std::sqrt(len2)) out.push_back({w, a.idx(), b.idx()});
-          }
-        }
-  }
+  for (auto e : m.edges())
+    addInsideEdge(m, grid, acrossSurfaces ? nullptr : &side, e, tolerance, out);
   return out;
 }
 
