@@ -74,56 +74,80 @@ DisplayEstimate estimateDisplay(const PatchMesh& mesh, const DirectLight& light)
   return out;
 }
 
-std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
-                                  const DisplayEstimate& estimate, const AdaptiveOptions& options,
-                                  MidpointLight& midpoints) {
-  std::vector<int> out;
-  if (!light.enabled()) return out;
-  const double exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
-  const auto& vertices = light.vertices();
-  const TriMesh& m = mesh.mesh;
-  RAD_CHECK(vertices.size() == m.n_vertices());
+namespace {
+
+/// Each light sample's light (LightPolygon index), padded to whole 64-bit words.
+std::vector<int> lightOfSamples(const DirectLight& light) {
   std::vector<int> lightOf(size_t(light.samples() + 63) / 64 * 64, 0);
   for (size_t t = 0; t < light.lights().size(); ++t)
     for (int j = 0; j < light.lights()[t].count; ++j) lightOf[size_t(light.lights()[t].first + j)] = int(t);
+  return lightOf;
+}
 
-  // The candidates, and the midpoints of their edges not yet known.
-  std::vector<int> candidates;
+/// Elements that may be refined: larger than the floor, and not black (black shows no light).
+std::vector<int> refinable(const PatchMesh& mesh, const AdaptiveOptions& options) {
+  std::vector<int> out;
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (longestEdge(mesh, e) > options.minElementEdge && mesh.reflectance(e) != glm::dvec3(0.0)) out.push_back(e);
+  return out;
+}
+
+/// The probe at the midpoint of element e's edge from a to b.
+DirectLight::Probe midpointProbe(const PatchMesh& mesh, int e, TriMesh::VertexHandle a, TriMesh::VertexHandle b,
+                                 const std::vector<VertexLight>& vertices) {
+  const TriMesh& m = mesh.mesh;
+  DirectLight::Probe p;
+  p.point = (PatchMesh::toGlm(m.point(a)) + PatchMesh::toGlm(m.point(b))) * 0.5;
+  p.normal = PatchMesh::toGlm(m.normal(a) + m.normal(b));
+  p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : mesh.normal(e);
+  p.rho = mesh.reflectance(e);
+  p.inwards = mesh.centroid(e) - p.point;
+  p.size = 0.5 * (m.point(a) - m.point(b)).norm();
+  // Where both ends see the same samples, so does the midpoint (a thin occluder seen
+  // from neither is the exception this accepts): its light needs no ray.
+  if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
+    p.visible = &vertices[size_t(a.idx())].visible;
+  return p;
+}
+
+/// Computes the light at the midpoints of the candidates' edges not yet in `midpoints`.
+void lightMidpoints(const PatchMesh& mesh, DirectLight& light, const std::vector<int>& candidates,
+                    MidpointLight& midpoints) {
+  const TriMesh& m = mesh.mesh;
   std::vector<DirectLight::Probe> probes;
   std::vector<uint64_t> probed;
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    if (longestEdge(mesh, e) <= options.minElementEdge) continue;
-    if (mesh.reflectance(e) == glm::dvec3(0.0)) continue;  // black shows no light
-    candidates.push_back(e);
+  for (int e : candidates)
     for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
       auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
       const uint64_t key = edgeKey(a.idx(), b.idx());
       if (midpoints.count(key)) continue;
       midpoints[key] = VertexLight{};
-      DirectLight::Probe p;
-      p.point = (PatchMesh::toGlm(m.point(a)) + PatchMesh::toGlm(m.point(b))) * 0.5;
-      p.normal = PatchMesh::toGlm(m.normal(a) + m.normal(b));
-      p.normal = glm::length(p.normal) > 0 ? glm::normalize(p.normal) : mesh.normal(e);
-      p.rho = mesh.reflectance(e);
-      p.inwards = mesh.centroid(e) - p.point;
-      p.size = 0.5 * (m.point(a) - m.point(b)).norm();
-      // Where both ends see the same samples, so does the midpoint (a thin occluder seen
-      // from neither is the exception this accepts): its light needs no ray.
-      if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
-        p.visible = &vertices[size_t(a.idx())].visible;
-      probes.push_back(p);
+      probes.push_back(midpointProbe(mesh, e, a, b, light.vertices()));
       probed.push_back(key);
     }
-  }
   std::vector<VertexLight> found = light.lightAt(probes);
   for (size_t k = 0; k < probed.size(); ++k) midpoints[probed[k]] = std::move(found[k]);
+}
 
-  for (int e : candidates) {
-    const double ambient = luminance(mesh.reflectance(e) * estimate.ambient);
-    auto shown = [&](double lum) { return display(lum + ambient, exposure); };
-    bool refine = false;
-    // What Gouraud shading shows at each edge's midpoint against the light there.
-    std::array<int, 3> corner;
+/// What deciding an element's refinement looks at.
+struct RefineTest {
+  const PatchMesh& mesh;
+  const std::vector<VertexLight>& vertices;
+  const MidpointLight& midpoints;
+  std::vector<int> lightOf;
+  glm::dvec3 ambient;
+  double exposure, contrast;
+
+  /// The display value of a luminance on element e, the ambient estimate added.
+  double shown(int e, double lum) const {
+    return display(lum + luminance(mesh.reflectance(e) * ambient), exposure);
+  }
+
+  /// What Gouraud shading shows at an edge's midpoint against the light there; the edge's
+  /// start vertices in `corner`.
+  bool midpointsDiffer(int e, std::array<int, 3>& corner) const {
+    const TriMesh& m = mesh.mesh;
+    bool differ = false;
     int k = 0;
     for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
       const int a = m.from_vertex_handle(h).idx(), b = m.to_vertex_handle(h).idx();
@@ -131,20 +155,73 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
       const double interpolated =
           0.5 * (luminance(vertices[size_t(a)].radiosity) + luminance(vertices[size_t(b)].radiosity));
       const double actual = luminance(midpoints.at(edgeKey(a, b)).radiosity);
-      refine = refine || std::abs(shown(actual) - shown(interpolated)) > options.contrast;
+      differ = differ || std::abs(shown(e, actual) - shown(e, interpolated)) > contrast;
     }
-    // Shadow boundaries: light one vertex sees that another does not.
-    for (size_t i = 0; i < 3 && !refine; ++i)
-      for (size_t j = 0; j < 3 && !refine; ++j) {
+    return differ;
+  }
+
+  /// Shadow boundaries: light one vertex sees that another does not.
+  bool shadowCrosses(int e, const std::array<int, 3>& corner) const {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
         const VertexLight &vi = vertices[size_t(corner[i])], &vj = vertices[size_t(corner[j])];
         if (i == j || vi.visible == vj.visible) continue;
         const double lum = luminance(vi.radiosity);
-        refine = shown(lum) - shown(lum - lightOnlyFrom(vi, vj, lightOf)) > options.contrast;
+        if (shown(e, lum) - shown(e, lum - lightOnlyFrom(vi, vj, lightOf)) > contrast) return true;
       }
-    if (refine) out.push_back(e);
+    return false;
   }
+
+  bool operator()(int e) const {
+    std::array<int, 3> corner;
+    return midpointsDiffer(e, corner) || shadowCrosses(e, corner);
+  }
+};
+
+}  // namespace
+
+std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
+                                  const DisplayEstimate& estimate, const AdaptiveOptions& options,
+                                  MidpointLight& midpoints) {
+  std::vector<int> out;
+  if (!light.enabled()) return out;
+  RAD_CHECK(light.vertices().size() == mesh.mesh.n_vertices());
+  const std::vector<int> candidates = refinable(mesh, options);
+  lightMidpoints(mesh, light, candidates, midpoints);
+  const RefineTest needsRefining{mesh, light.vertices(), midpoints, lightOfSamples(light), estimate.ambient,
+                                 options.exposure > 0 ? options.exposure : estimate.exposure, options.contrast};
+  for (int e : candidates)
+    if (needsRefining(e)) out.push_back(e);
   return out;
 }
+
+namespace {
+
+/// Bisects the marked elements; each new vertex is the midpoint of the edge it split, where
+/// the light is known: that light, by new vertex, moved out of `midpoints`.
+std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked,
+                                            MidpointLight& midpoints) {
+  std::vector<EdgeSplit> splits;
+  bisectElements(mesh, marked, &splits);
+  std::unordered_map<int, VertexLight> known;
+  for (const auto& s : splits) {
+    auto it = midpoints.find(edgeKey(s.from, s.to));
+    if (it == midpoints.end()) continue;
+    known.emplace(s.vertex, std::move(it->second));
+    midpoints.erase(it);
+  }
+  return known;
+}
+
+/// Whether the mesh has reached the element cap (said in the mesh's warnings).
+bool capReached(PatchMesh& mesh, const AdaptiveOptions& options) {
+  if (options.maxElements <= 0 || mesh.elementCount() < options.maxElements) return false;
+  mesh.warnings.push_back("adaptive refinement stopped at " + std::to_string(mesh.elementCount()) +
+                          " elements, the cap (raise solver.max_elements)");
+  return true;
+}
+
+}  // namespace
 
 AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const AdaptiveOptions& options) {
   RAD_CHECK(options.minElementEdge > 0);  // without a floor only maxRounds would stop it
@@ -156,25 +233,11 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   const DisplayEstimate estimate = estimateDisplay(mesh, light);
   MidpointLight midpoints;
   stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
-  for (int round = 0; round < options.maxRounds && light.enabled(); ++round) {
-    if (options.maxElements > 0 && mesh.elementCount() >= options.maxElements) {
-      mesh.warnings.push_back("adaptive refinement stopped at " + std::to_string(mesh.elementCount()) +
-                              " elements, the cap (raise solver.max_elements)");
-      break;
-    }
+  for (int round = 0; round < options.maxRounds && light.enabled() && !capReached(mesh, options); ++round) {
     std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
-    std::vector<EdgeSplit> splits;
-    bisectElements(mesh, marked, &splits);
-    // Each new vertex is the midpoint of the edge it split, where the light is known.
-    std::unordered_map<int, VertexLight> known;
-    for (const auto& s : splits) {
-      auto it = midpoints.find(edgeKey(s.from, s.to));
-      if (it == midpoints.end()) continue;
-      known.emplace(s.vertex, std::move(it->second));
-      midpoints.erase(it);
-    }
+    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints);
     light.update(mesh, &known);
     ++stats.rounds;
   }

@@ -19,47 +19,69 @@ double estimateElements(const Scene& scene, double edge) {
   return std::max(area / (std::sqrt(3.0) / 4 * edge * edge), polygons);
 }
 
-Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
+namespace {
+
+/// The override, else the scene file's value, else the default.
+template <class T, class U>
+T pick(const std::optional<T>& flag, const std::optional<T>& file, U fallback) {
+  return flag ? *flag : file ? *file : T(fallback);
+}
+
+/// Element and patch sizes, contacts and adaptive refinement.
+void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   const SolverBlock& file = scene.solver;
-  auto pick = [](const auto& flag, const auto& fromFile, auto fallback) {
-    return flag ? *flag : fromFile ? *fromFile : fallback;
-  };
-  Settings s;
   const MeshSettings mesh = resolveMeshSettings(scene, flags);
   s.maxElementEdge = mesh.maxElementEdge;
   s.maxPatchEdge = mesh.maxPatchEdge;
   s.cutContacts = mesh.cutContacts;
   s.adaptive = pick(flags.adaptive, file.adaptive, true);
-  s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge,
-                          s.maxElementEdge / kDefaultMinElementRatio);
+  s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge, s.maxElementEdge / kDefaultMinElementRatio);
   s.contrast = pick(flags.contrast, file.contrast, kDefaultContrast);
   s.vertexDirect = pick(flags.vertexDirect, file.vertexDirect, true);
-  s.emitterHemicubeResolution = pick(flags.emitterHemicubeResolution,
-                                     file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
-  s.hemicubeResolution =
-      pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
-  s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
+  s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
+}
+
+/// Hemicubes, shooting points and the factor cache.
+void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
+  s.emitterHemicubeResolution =
+      pick(flags.emitterHemicubeResolution, file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
+  s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
   s.seed = pick(flags.seed, file.seed, 1u);
-  s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
-  s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
-  s.exposure = flags.exposure ? flags.exposure : file.exposure;
   s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, kDefaultEmitterSamples);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
-  s.proximitySamples =
-      pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
+  s.proximitySamples = pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
-  s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
-  // Refuse before meshing what would not fit: a user who asks for 1e9 elements learns it now.
+}
+
+/// When to stop, and the exposure shown.
+void resolveStopping(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
+  s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
+  s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
+  s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
+  s.exposure = flags.exposure ? flags.exposure : file.exposure;
+}
+
+/// Refuses before meshing what would not fit: a user who asks for 1e9 elements learns it now.
+void checkElementCap(const Scene& scene, const Settings& s) {
   const double estimate = estimateElements(scene, s.maxElementEdge);
-  if (!(estimate <= double(s.maxElements))) {
-    char found[160];
-    std::snprintf(found, sizeof found, "%g (about %.3g elements)", s.maxElementEdge, estimate);
-    throw SettingError(inputError(scene.path + ": solver.max_element_edge",
-                     "an element edge giving at most " + std::to_string(s.maxElements) +
-                         " elements (raise the edge, or the cap solver.max_elements)",
-                     found).what());
-  }
+  if (estimate <= double(s.maxElements)) return;
+  char found[160];
+  std::snprintf(found, sizeof found, "%g (about %.3g elements)", s.maxElementEdge, estimate);
+  throw SettingError(inputError(scene.path + ": solver.max_element_edge",
+                                "an element edge giving at most " + std::to_string(s.maxElements) +
+                                    " elements (raise the edge, or the cap solver.max_elements)",
+                                found).what());
+}
+
+}  // namespace
+
+Settings resolveSettings(const Scene& scene, const SolverBlock& flags) {
+  Settings s;
+  resolveMeshing(s, scene, flags);
+  resolveShooting(s, scene.solver, flags);
+  resolveStopping(s, scene.solver, flags);
+  checkElementCap(scene, s);
   return s;
 }
 

@@ -19,6 +19,8 @@ struct Command {
   std::function<void()> run;
 };
 
+/// The scene file argument and the required -o/--output file.
+void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, const std::string& outputHelp);
 /// Flags shared by every command that meshes: one name each, as in the scene's solver block.
 void addMeshFlags(CLI::App& app, SolverBlock& flags);
 /// --hemicube and --seed, shared by every command that computes form factors.

@@ -208,39 +208,52 @@ Curve front(const std::vector<Curve>& curves) {
   return f;
 }
 
+using Curves = std::vector<std::pair<std::string, Curve>>;  // (group, curve)
+
+/// The ladder's curves and their front.
+void addLadder(Curves& curves, const ConvergenceOptions& o, const Scene& scene,
+               const std::vector<ReferencePoint>& points) {
+  std::fprintf(stderr, "radiosity: accuracy ladder (as 'radiosity solve' runs, to unshot %g)\n", kLadderTolerance);
+  std::vector<Curve> rungs;
+  for (const Rung& r : ladder(o.flags, scene)) rungs.push_back(ladderCurve(r, scene, points, o.reference));
+  Curve f = front(rungs);
+  for (auto& c : rungs) curves.push_back({"ladder", std::move(c)});
+  curves.push_back({"front", std::move(f)});
+}
+
+std::string csvOf(const Curves& curves) {
+  std::ostringstream csv;
+  csv << "group,name,seconds,steps,error\n";
+  for (const auto& [group, c] : curves)
+    for (size_t i = 0; i < c.steps.size(); ++i)
+      csv << group << "," << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
+          << c.series.points[i].second << "\n";
+  return csv.str();
+}
+
+std::string svgOf(const Curves& curves, const std::string& reference) {
+  std::vector<Series> series;
+  for (const auto& [group, c] : curves) {
+    series.push_back(c.series);
+    series.back().name = (group == "ladder" ? "ladder: " : "") + c.series.name;
+  }
+  return svgLogPlot("True error (RMS relative, vs " + reference + ") against run time", "seconds", "true error",
+                    series);
+}
+
 void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
   const std::vector<ReferencePoint> points = readReferenceFile(o.reference).points;
   Scene scene = loadSceneToSolve(o.scene);
   printWarnings(scene.warnings);
-
-  std::vector<std::pair<std::string, Curve>> curves;  // (group, curve)
+  Curves curves;
   if (o.variants)
     for (auto& c : variantCurves(o, scene, points)) curves.push_back({"variant", std::move(c)});
-  if (o.ladder) {
-    std::fprintf(stderr, "radiosity: accuracy ladder (as 'radiosity solve' runs, to unshot %g)\n", kLadderTolerance);
-    std::vector<Curve> rungs;
-    for (const Rung& r : ladder(o.flags, scene)) rungs.push_back(ladderCurve(r, scene, points, o.reference));
-    Curve f = front(rungs);
-    for (auto& c : rungs) curves.push_back({"ladder", std::move(c)});
-    curves.push_back({"front", std::move(f)});
-  }
-
-  std::vector<Series> series;
-  std::ostringstream csv;
-  csv << "group,name,seconds,steps,error\n";
-  for (const auto& [group, c] : curves) {
-    series.push_back(c.series);
-    series.back().name = (group == "ladder" ? "ladder: " : "") + c.series.name;
-    for (size_t i = 0; i < c.steps.size(); ++i)
-      csv << group << "," << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
-          << c.series.points[i].second << "\n";
-  }
-  const std::string svg = svgLogPlot("True error (RMS relative, vs " + o.reference + ") against run time",
-                                     "seconds", "true error", series);
+  if (o.ladder) addLadder(curves, o, scene, points);
+  const std::string svg = svgOf(curves, o.reference);
   writeFileAtomically(o.output, [&](std::ostream& out) { out << svg; });
-  if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csv.str(); });
+  if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csvOf(curves); });
   for (const auto& [group, c] : curves)
     std::fprintf(stderr, "  %-7s %-24s true error %.2f %% after %.2f s (%ld steps)\n", group.c_str(),
                  c.series.name.c_str(), 100 * c.series.points.back().second, c.series.points.back().first,
@@ -256,9 +269,8 @@ Command addConvergenceCommand(CLI::App& app) {
                      "time (SVG, and CSV): progressive refinement, with the ambient term, with "
                      "overshooting, Jacobi and Gauss-Seidel on one uniform mesh, and a ladder of "
                      "settings solved as 'radiosity solve' does, with its front");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
+  addSceneAndOutput(*sub, o->scene, o->output, "Plot (SVG)");
   sub->add_option("--reference", o->reference, "Reference CSV from 'radiosity reference' for this scene")->required();
-  sub->add_option("-o,--output", o->output, "Plot (SVG)")->required();
   sub->add_option("--csv", o->csv, "The data: group,name,seconds,steps,error");
   sub->add_option("--tolerance", o->flags.tolerance,
                   "The ladder's solves stop when unshot/emitted power falls below this (default 1e-4)")

@@ -22,13 +22,7 @@ std::string rgb(const glm::dvec3& c) {
   return buf;
 }
 
-void runInfo(const InfoOptions& o) {
-  Scene loaded = loadScene(o.scene);
-  auto start = std::chrono::steady_clock::now();
-  const MeshedScene meshed = meshWithFlags(std::move(loaded), o.flags, false);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
-
+void printScene(const Scene& scene, const Settings& settings) {
   std::printf("scene       %s%s%s\n", scene.path.c_str(), scene.units.empty() ? "" : ", units ",
               scene.units.c_str());
   std::printf("size        diagonal %.6g\n", scene.diagonal());
@@ -39,6 +33,10 @@ void runInfo(const InfoOptions& o) {
     std::printf("  %-16s reflectance %-22s emission %-22s%s%s\n", m.name.c_str(),
                 rgb(m.reflectance).c_str(), rgb(m.emission).c_str(),
                 m.preset.empty() ? "" : " preset ", m.preset.c_str());
+}
+
+/// The surface table, then the totals.
+void printSurfaces(const Scene& scene, const PatchMesh& mesh) {
   std::printf("\nsurfaces\n  %3s %-20s %-12s %14s %6s %8s %9s\n", "#", "name", "material", "area",
               "sides", "patches", "elements");
   double total = 0, emitting = 0;
@@ -56,7 +54,10 @@ void runInfo(const InfoOptions& o) {
               scene.surfaces.size(), mesh.patches.size(), mesh.elementCount(),
               mesh.mesh.n_vertices());
   std::printf("area        %.9g (all sides), emitting %.9g\n", total, emitting);
-  // Contacts: where surfaces touch, the mesh is cut; what they enclose is left out.
+}
+
+/// Contacts: where surfaces touch, the mesh is cut; what they enclose is left out.
+void printContacts(const Scene& scene, const PatchMesh& mesh) {
   double cut = 0;
   for (const auto& c : mesh.cutAway) cut += c.area;
   std::printf("contacts    %d lines where surfaces touch; %.9g cut away\n", mesh.contactLines, cut);
@@ -66,6 +67,11 @@ void runInfo(const InfoOptions& o) {
     std::printf("  %-20s %14.9g cut away: enclosed by %s\n", scene.surfaces[c.surface].name.c_str(),
                 c.area, by.c_str());
   }
+}
+
+/// Emitters, mesh quality, refinement, the direct light and the time taken.
+void printMeshing(const MeshedScene& meshed, double seconds) {
+  const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",
               mesh.stats.minAngleDeg, mesh.stats.maxEdge, mesh.stats.maxPatchDiameter);
@@ -77,8 +83,18 @@ void runInfo(const InfoOptions& o) {
                                           " points on the emitters, " + std::to_string(direct->rays()) +
                                           " rays").c_str()
                                        : "from the hemicubes");
-  std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds,
-              mesh.stats.rounds);
+  std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds, mesh.stats.rounds);
+}
+
+void runInfo(const InfoOptions& o) {
+  Scene loaded = loadScene(o.scene);
+  auto start = std::chrono::steady_clock::now();
+  const MeshedScene meshed = meshWithFlags(std::move(loaded), o.flags, false);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printScene(meshed.scene, meshed.settings);
+  printSurfaces(meshed.scene, meshed.mesh);
+  printContacts(meshed.scene, meshed.mesh);
+  printMeshing(meshed, seconds);
   std::fflush(stdout);
   if (std::ferror(stdout)) throw std::runtime_error("standard output: write error");
 }

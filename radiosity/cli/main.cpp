@@ -11,7 +11,15 @@
 
 namespace rad::cli {
 
-void addMeshFlags(CLI::App& app, SolverBlock& flags) {
+void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, const std::string& outputHelp) {
+  app.add_option("scene", scene, "Scene file (JSON, version 1)")->required();
+  app.add_option("-o,--output", output, outputHelp)->required();
+}
+
+namespace {
+
+/// Element and patch sizes, contacts and the element cap.
+void addSizeFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--max-element-edge", flags.maxElementEdge,
                  "Longest element edge, scene units (solver.max_element_edge; default: "
                  "scene diagonal / 25)")
@@ -23,6 +31,14 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--cut-contacts", flags.cutContacts,
                  "Cut surfaces along the lines where others touch them and leave out what those "
                  "enclose, true or false (solver.cut_contacts; default true)");
+  app.add_option("--max-elements", flags.maxElements,
+                 "Refuse meshes of more elements than this, estimated before meshing; adaptive "
+                 "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)")
+      ->check(CLI::Range(1L, 1'000'000'000'000L));
+}
+
+/// Adaptive refinement and the direct light at the vertices.
+void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--adaptive", flags.adaptive,
                  "Refine elements where the direct light changes visibly (penumbrae, contacts), "
                  "true or false (solver.adaptive; default true)");
@@ -34,16 +50,13 @@ void addMeshFlags(CLI::App& app, SolverBlock& flags) {
                  "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
                  "across an element (solver.contrast; default 0.02)")
       ->check(CLI::Range(1e-6, 1.0));
-  app.add_option("--max-elements", flags.maxElements,
-                 "Refuse meshes of more elements than this, estimated before meshing; adaptive "
-                 "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)")
-      ->check(CLI::Range(1L, 1'000'000'000'000L));
   app.add_option("--vertex-direct", flags.vertexDirect,
                  "Show direct light computed at the vertices by rays to points on the emitters, "
                  "true or false (solver.vertex_direct; default true)");
 }
 
-void addSolverFlags(CLI::App& app, SolverBlock& flags) {
+/// The hemicube resolutions and the seed of their rotations.
+void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--hemicube", flags.hemicubeResolution,
                  "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
                  "default 128)")
@@ -55,6 +68,10 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
       ->check(CLI::Range(2, 8192))
       ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
+}
+
+/// Shooting points and the factor cache.
+void addShootingFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--emitter-samples", flags.emitterSamples,
                  "Shooting points on each emitting patch (solver.emitter_samples; default 64)")
       ->check(CLI::Range(1, 65536));
@@ -69,6 +86,18 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
                  "Memory for reusing a patch's form factors when it shoots again, MiB "
                  "(solver.factor_cache_mb; default 256; 0: recompute)")
       ->check(CLI::Range(0.0, 1e9));
+}
+
+}  // namespace
+
+void addMeshFlags(CLI::App& app, SolverBlock& flags) {
+  addSizeFlags(app, flags);
+  addRefinementFlags(app, flags);
+}
+
+void addSolverFlags(CLI::App& app, SolverBlock& flags) {
+  addHemicubeFlags(app, flags);
+  addShootingFlags(app, flags);
 }
 
 MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmitter) {
@@ -113,38 +142,40 @@ void printWarnings(const std::vector<std::string>& warnings) {
 
 }  // namespace rad::cli
 
-int main(int argc, char** argv) {
-  CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
-  app.require_subcommand(1);
-  std::vector<rad::cli::Command> commands = {rad::cli::addSolveCommand(app),
-                                             rad::cli::addInfoCommand(app),
-                                             rad::cli::addMeshCommand(app),
-                                             rad::cli::addFormFactorsCommand(app),
-                                             rad::cli::addConvergenceCommand(app),
-                                             rad::cli::addReferenceCommand(app)};
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);  // prints help, or the usage error
-    return code == 0 ? 0 : 2;
-  }
+namespace {
+
+/// Runs the parsed command; errors are said on stderr with exit status 1.
+int runReportingErrors(const std::vector<rad::cli::Command>& commands) {
   try {
     for (const auto& command : commands)
       if (command.app->parsed()) command.run();
+    return 0;
   } catch (const rad::SettingError& e) {
     std::cerr << "radiosity: error: " << rad::cli::withFlags(e.what()) << "\n";
-    return 1;
-  } catch (const rad::InputError& e) {
-    std::cerr << "radiosity: error: " << e.what() << "\n";
-    return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "radiosity: error: out of memory: the scene's mesh and factors need more than this "
                  "machine has (raise --max-element-edge or lower --max-elements and "
                  "--factor-cache-mb)\n";
-    return 1;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // InputError and the rest
     std::cerr << "radiosity: error: " << e.what() << "\n";
-    return 1;
   }
-  return 0;
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
+  app.require_subcommand(1);
+  const std::vector<rad::cli::Command> commands = {
+      rad::cli::addSolveCommand(app),       rad::cli::addInfoCommand(app),
+      rad::cli::addMeshCommand(app),        rad::cli::addFormFactorsCommand(app),
+      rad::cli::addConvergenceCommand(app), rad::cli::addReferenceCommand(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, or the usage error
+    return code == 0 ? 0 : 2;
+  }
+  return runReportingErrors(commands);
 }

@@ -37,8 +37,7 @@ Command addMeshCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "mesh", "Mesh the scene into patches and elements and write it as a PLY file (per face: "
               "surface index, patch index, side)");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  sub->add_option("-o,--output", o->output, "Output PLY file")->required();
+  addSceneAndOutput(*sub, o->scene, o->output, "Output PLY file");
   addMeshFlags(*sub, o->flags);
   return {sub, [o] { runMesh(*o); }};
 }

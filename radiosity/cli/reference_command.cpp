@@ -65,23 +65,78 @@ void showProgress(double share) {
                std::string(size_t(width - filled), '.').c_str(), 100 * share);
 }
 
-void runReference(const ReferenceOptions& o) {
-  checkOutputPath(o.output);
-  Scene scene = loadScene(o.scene);
-  if (!scene.hasEmitter())
-    throw inputError(scene.path + ": surfaces", "at least one surface whose material has an emission", "none");
-  printWarnings(scene.warnings);
-  const pathtrace::TraceScene traced(scene);
+/// The points to measure: from --points, or placed.
+std::vector<pathtrace::SurfacePoint> pointsFor(const ReferenceOptions& o, const Scene& scene,
+                                               const pathtrace::TraceScene& traced) {
   std::vector<pathtrace::SurfacePoint> points =
       o.points.empty() ? pathtrace::placePoints(traced, o.count, o.seed) : readPoints(o.points, traced);
   if (points.empty()) throw inputError(scene.path, "a non-emitting surface to place points on", "none");
+  return points;
+}
 
+pathtrace::TraceOptions traceOptions(const ReferenceOptions& o) {
   pathtrace::TraceOptions options;
   options.seed = o.seed;
   options.paths = o.paths;
   options.relativeError = o.relativeError;
   options.minPaths = o.minPaths;
   options.maxPaths = std::max(o.maxPaths, o.minPaths);
+  return options;
+}
+
+/// How the estimates came out: the fewest and most paths per point, and the points that
+/// stopped at the cap before reaching the relative error.
+struct PathCounts {
+  long capped = 0, fewest = 0, most = 0;
+};
+
+/// The reference file's points, and the path counts.
+ReferenceFile referencePoints(const Scene& scene, const std::vector<pathtrace::SurfacePoint>& points,
+                              const std::vector<pathtrace::PointEstimate>& estimates, bool capping,
+                              long maxPaths, PathCounts& counts) {
+  ReferenceFile file;
+  counts = {0, estimates[0].paths, 0};
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto& e = estimates[i];
+    file.points.push_back({points[i].position, points[i].normal, scene.surfaces[size_t(points[i].surface)].name,
+                           points[i].tag, e.B, e.standardError, e.paths});
+    counts.capped += capping && e.paths >= maxPaths;
+    counts.fewest = std::min(counts.fewest, e.paths);
+    counts.most = std::max(counts.most, e.paths);
+  }
+  return file;
+}
+
+/// The header lines: method, scene, seed, points, paths and time.
+std::vector<std::string> referenceHeader(const ReferenceOptions& o, const pathtrace::TraceOptions& options,
+                                         const Scene& scene, size_t points, const PathCounts& counts,
+                                         long traced, double seconds) {
+  std::vector<std::string> header;
+  char buf[256];
+  header.push_back("radiosity reference: path tracing (next-event estimation and cosine-weighted bounces "
+                   "combined by the power heuristic, Russian roulette), independent of the hemicube solver");
+  header.push_back("scene: " + scene.path);
+  header.push_back("seed: " + std::to_string(o.seed));
+  header.push_back("points: " + std::to_string(points) +
+                   (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points));
+  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
+  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
+                     o.relativeError, options.minPaths, options.maxPaths, counts.capped);
+  header.push_back(buf);
+  std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", traced, counts.fewest, counts.most);
+  header.push_back(buf);
+  std::snprintf(buf, sizeof buf, "seconds: %.3f (%.3g paths per second)", seconds, double(traced) / seconds);
+  header.push_back(buf);
+  return header;
+}
+
+void runReference(const ReferenceOptions& o) {
+  checkOutputPath(o.output);
+  Scene scene = loadSceneToSolve(o.scene);
+  printWarnings(scene.warnings);
+  const pathtrace::TraceScene traced(scene);
+  const std::vector<pathtrace::SurfacePoint> points = pointsFor(o, scene, traced);
+  pathtrace::TraceOptions options = traceOptions(o);
   const bool terminal = isatty(STDERR_FILENO);
   if (terminal) options.progress = showProgress;
   const auto t0 = std::chrono::steady_clock::now();
@@ -89,32 +144,9 @@ void runReference(const ReferenceOptions& o) {
   const std::vector<pathtrace::PointEstimate> estimates = tracer.estimate(points, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (terminal) std::fprintf(stderr, "\n");
-
-  ReferenceFile file;
-  long capped = 0, fewest = estimates[0].paths, most = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const auto& e = estimates[i];
-    file.points.push_back({points[i].position, points[i].normal, scene.surfaces[size_t(points[i].surface)].name,
-                           points[i].tag, e.B, e.standardError, e.paths});
-    capped += o.paths <= 0 && e.paths >= options.maxPaths;
-    fewest = std::min(fewest, e.paths);
-    most = std::max(most, e.paths);
-  }
-  char buf[256];
-  file.header.push_back("radiosity reference: path tracing (next-event estimation and cosine-weighted bounces "
-                        "combined by the power heuristic, Russian roulette), independent of the hemicube solver");
-  file.header.push_back("scene: " + scene.path);
-  file.header.push_back("seed: " + std::to_string(o.seed));
-  file.header.push_back("points: " + std::to_string(points.size()) +
-                        (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points));
-  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
-  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
-                     o.relativeError, options.minPaths, options.maxPaths, capped);
-  file.header.push_back(buf);
-  std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", tracer.pathsTraced(), fewest, most);
-  file.header.push_back(buf);
-  std::snprintf(buf, sizeof buf, "seconds: %.3f (%.3g paths per second)", seconds, double(tracer.pathsTraced()) / seconds);
-  file.header.push_back(buf);
+  PathCounts counts;
+  ReferenceFile file = referencePoints(scene, points, estimates, o.paths <= 0, options.maxPaths, counts);
+  file.header = referenceHeader(o, options, scene, points.size(), counts, tracer.pathsTraced(), seconds);
   writeReferenceFile(o.output, file);
   std::fprintf(stderr, "radiosity: %zu points, %ld paths in %.2f s (%.3g per second); wrote %s\n", points.size(),
                tracer.pathsTraced(), seconds, double(tracer.pathsTraced()) / seconds, o.output.c_str());
@@ -127,8 +159,7 @@ Command addReferenceCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "reference", "Radiosity at surface points by Monte Carlo path tracing, independent of the "
                    "hemicube solver, with standard errors (CSV): the truth to measure solves against");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  sub->add_option("-o,--output", o->output, "Reference file (CSV)")->required();
+  addSceneAndOutput(*sub, o->scene, o->output, "Reference file (CSV)");
   auto* points = sub->add_option("--points", o->points, "Points to measure: lines 'x y z nx ny nz [tag]'");
   sub->add_option("--count", o->count, "Points to place when --points is not given (default 300)")
       ->check(CLI::Range(1, 1'000'000))

@@ -117,35 +117,45 @@ void printTrueError(const ErrorSummary& e, const TrueError& truth, const std::st
                100 * e.meanRgb.x, 100 * e.meanRgb.y, 100 * e.meanRgb.z);
 }
 
+/// The measures asked for: the true error against the reference's points, the fixed point.
+Measures measuresFor(const SolveOptions& o, const MeshedScene& scene, std::vector<ReferencePoint> points) {
+  Measures m;
+  m.fixedPoint = fixedPoint(o.fixedPoint, scene);
+  if (!points.empty()) m.truth = std::make_unique<TrueError>(scene.mesh, scene.scene, std::move(points), o.reference);
+  return m;
+}
+
+/// The report's closing measures: the true error of what is baked, and the fixed-point distance.
+void addMeasures(Json& report, const SolveOptions& o, const Measures& m, const MeshedScene& scene,
+                 const RadiositySolve& solve, const Solution& solution) {
+  if (m.truth) {
+    const ErrorSummary e = m.truth->measure(shownAtVertices(scene, solution));
+    report["error"] = errorBlock(e, *m.truth, o.reference);
+    printTrueError(e, *m.truth, o.reference);
+  }
+  if (!m.fixedPoint.empty()) {
+    report["fixed_point"] = o.fixedPoint;
+    report["fixed_point_distance"] = relativeError(scene.mesh, solve.solver().radiosity(), m.fixedPoint);
+  }
+}
+
 void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
   std::vector<ReferencePoint> referencePoints = readReference(o.reference);
   const MeshedScene scene = meshWithFlags(loadSceneToSolve(o.scene), o.flags, true);
-  Measures measures;
-  measures.fixedPoint = fixedPoint(o.fixedPoint, scene);
-  if (!referencePoints.empty())
-    measures.truth = std::make_unique<TrueError>(scene.mesh, scene.scene, std::move(referencePoints), o.reference);
+  const Measures measures = measuresFor(o, scene, std::move(referencePoints));
   RadiositySolve solve(scene);
   Json history = shoot(solve, scene, measures);
   const Solution solution = solve.bake();
-  Json report = solveReport(scene, solve, solution);
-  std::unique_ptr<ErrorSummary> trueError;
-  if (measures.truth) {
-    trueError = std::make_unique<ErrorSummary>(measures.truth->measure(shownAtVertices(scene, solution)));
-    report["error"] = errorBlock(*trueError, *measures.truth, o.reference);
-  }
-  if (!measures.fixedPoint.empty()) {
-    report["fixed_point"] = o.fixedPoint;
-    report["fixed_point_distance"] = relativeError(scene.mesh, solve.solver().radiosity(), measures.fixedPoint);
-  }
-  report["history"] = history;
   // Outputs: each through a temporary file; the report last, so a report means a result.
   writeSolution(o.output, scene, solution);
+  printOutcome(solve, solution, o.output);
+  Json report = solveReport(scene, solve, solution);
+  addMeasures(report, o, measures, scene, solve, solution);
+  report["history"] = history;
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
-  printOutcome(solve, solution, o.output);
-  if (trueError) printTrueError(*trueError, *measures.truth, o.reference);
 }
 
 }  // namespace
@@ -155,8 +165,7 @@ Command addSolveCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "solve", "Solve the scene by progressive refinement and write the result mesh (vertex "
                "radiosities as colours) and, optionally, a JSON report");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  sub->add_option("-o,--output", o->output, "Result mesh (binary PLY)")->required();
+  addSceneAndOutput(*sub, o->scene, o->output, "Result mesh (binary PLY)");
   sub->add_option("--report", o->report, "Report file (JSON): settings, counts, energy ledger, history");
   addMeshFlags(*sub, o->flags);
   addSolverFlags(*sub, o->flags);
