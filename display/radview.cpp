@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     Image image;
     std::chrono::steady_clock::time_point start;
     if (ladder) {
-      ResultMesh mesh = loadResult(input);
+      rad::ResultFile mesh = rad::readResultFile(input);
       rad::Scene scene = rad::loadScene(scenePath);
       for (const auto& w : scene.warnings) std::cerr << "radview: warning: " << w << "\n";
       if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
@@ -130,14 +130,14 @@ int main(int argc, char** argv) {
       start = std::chrono::steady_clock::now();
       image = renderLocal(local, o);
     } else if (mode == "hybrid") {
-      ResultMesh mesh = loadResult(input);
+      rad::ResultFile mesh = rad::readResultFile(input);
       rad::Scene scene = rad::loadScene(scenePath);
       for (const auto& w : scene.warnings) std::cerr << "radview: warning: " << w << "\n";
       if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
       start = std::chrono::steady_clock::now();
       image = renderHybrid(mesh, scene, o);
     } else {
-      ResultMesh mesh = loadResult(input);
+      rad::ResultFile mesh = rad::readResultFile(input);
       if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
       start = std::chrono::steady_clock::now();
       image = render(mesh, o);

@@ -12,6 +12,7 @@
 #include <stb_image_write.h>
 
 #include "display/raster.h"
+#include "mesh/camera.h"
 #include "mesh/color.h"
 #include "mesh/error.h"
 #include "mesh/mesh_settings.h"
@@ -125,7 +126,7 @@ void toStream(void* context, void* data, int size) {
 
 }  // namespace
 
-ViewCamera parseCamera(const std::string& text, const ViewCamera& base) {
+Camera parseCamera(const std::string& text, const Camera& base) {
   const std::string where = "--camera";
   const std::string expected = "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F (any subset)";
   auto bad = [&](const std::string& why) { return inputError(where, expected, why); };
@@ -152,7 +153,7 @@ ViewCamera parseCamera(const std::string& text, const ViewCamera& base) {
     values[current].push_back(v);
   }
   if (values.empty()) throw bad("'" + text + "'");
-  ViewCamera c = base;
+  Camera c = base;
   for (const auto& [key, v] : values) {
     size_t want = key == "fov" ? 1 : 3;
     if (v.size() != want)
@@ -166,24 +167,18 @@ ViewCamera parseCamera(const std::string& text, const ViewCamera& base) {
   return c;
 }
 
-ViewCamera effectiveCamera(const ResultMesh& mesh, const RenderOptions& options) {
+Camera effectiveCamera(const ResultFile& mesh, const RenderOptions& options) {
   if (options.camera) return *options.camera;
   if (mesh.camera) return *mesh.camera;
-  // Default: looking along +z at the centre of the bounding box, far enough to see all of it.
-  ViewCamera c;
-  glm::dvec3 centre = 0.5 * (mesh.boundsMin + mesh.boundsMax);
-  double radius = std::max(0.5 * glm::length(mesh.boundsMax - mesh.boundsMin), 1e-9);
-  c.target = centre;
-  c.eye = centre - glm::dvec3(0, 0, radius / std::sin(glm::radians(c.fovYDeg / 2)));
-  return c;
+  return defaultCamera(mesh.boundsMin, mesh.boundsMax);
 }
 
-double effectiveExposure(const ResultMesh& mesh, const RenderOptions& options) {
+double effectiveExposure(const ResultFile& mesh, const RenderOptions& options) {
   if (options.exposure) return *options.exposure;
   return mesh.exposure.value_or(1.0);
 }
 
-glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& c, int width, int height,
+glm::mat4 viewProjection(const ResultFile& mesh, const Camera& c, int width, int height,
                          glm::mat4* projection, glm::mat4* view) {
   glm::dmat4 v = glm::lookAt(c.eye, c.target, c.up);
   // Near and far fitted to the bounding box's corners along the view axis.
@@ -241,7 +236,7 @@ void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>&
   }
 }
 
-DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure, bool storedColours) {
+DrawList buildDrawList(const ResultFile& mesh, Shading shade, double exposure, bool storedColours) {
   DrawList list;
   const size_t n = mesh.faces.size() * 3;
   list.positions.reserve(n);
@@ -279,7 +274,7 @@ void checkSize(const RenderOptions& o) {
 }
 
 /// Checks that every face has a surface index of `scene`; where names the mode.
-void checkFaceSurfaces(const ResultMesh& mesh, const Scene& scene, const std::string& where) {
+void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where) {
   if (mesh.faceSurface.size() != mesh.faces.size())
     throw inputError(mesh.path, "a result with the face property `surface` (for " + where + ")", "none");
   for (size_t f = 0; f < mesh.faceSurface.size(); ++f)
@@ -290,21 +285,18 @@ void checkFaceSurfaces(const ResultMesh& mesh, const Scene& scene, const std::st
                        std::to_string(mesh.faceSurface[f]));
 }
 
-/// A ResultMesh carrying only what camera fitting uses: the bounds and the scene's camera.
-ResultMesh boundsOnly(const LocalScene& local) {
-  ResultMesh m;
+/// A ResultFile carrying only what camera fitting uses: the bounds and the scene's camera.
+ResultFile boundsOnly(const LocalScene& local) {
+  ResultFile m;
   m.path = local.scene.path;
   m.boundsMin = local.boundsMin;
   m.boundsMax = local.boundsMax;
-  if (local.scene.camera) {
-    const Camera& c = *local.scene.camera;
-    m.camera = ViewCamera{c.eye, c.target, c.up, c.fovYDeg};
-  }
+  m.camera = local.scene.camera;
   return m;
 }
 }  // namespace
 
-Image render(const ResultMesh& mesh, const RenderOptions& o) {
+Image render(const ResultFile& mesh, const RenderOptions& o) {
   checkSize(o);
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
@@ -349,7 +341,7 @@ LocalScene prepareLocalScene(Scene scene) {
 
 LocalScene loadLocalScene(const std::string& path) { return prepareLocalScene(loadScene(path)); }
 
-ViewCamera effectiveCamera(const LocalScene& local, const RenderOptions& options) {
+Camera effectiveCamera(const LocalScene& local, const RenderOptions& options) {
   return effectiveCamera(boundsOnly(local), options);
 }
 
@@ -392,7 +384,7 @@ LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
   return list;
 }
 
-HybridDrawList buildHybridDrawList(const ResultMesh& mesh, const Scene& scene, Shading shade,
+HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, Shading shade,
                                    double exposure, bool storedColours) {
   const DrawList base = buildDrawList(mesh, shade, exposure, storedColours);
   std::vector<std::vector<size_t>> bySurface(scene.surfaces.size());
@@ -432,7 +424,7 @@ HybridDrawList buildHybridDrawList(const ResultMesh& mesh, const Scene& scene, S
 
 }  // namespace detail
 
-Image renderHybrid(const ResultMesh& mesh, const Scene& scene, const RenderOptions& o) {
+Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
   checkSize(o);
   if (o.backend != Backend::OsMesa)
     throw inputError("--mode hybrid", "--backend osmesa (the hybrid model is OpenGL-only)", "--backend software");
@@ -465,7 +457,7 @@ void pasteTile(Image& grid, const Image& tile, int cell) {
 }
 
 /// Ladder tiles drawn by the raster core: the wireframe (0) or hidden surfaces removed (1).
-Image ladderSoftwareTile(const ResultMesh& mesh, const Scene& scene, const RenderOptions& o,
+Image ladderSoftwareTile(const ResultFile& mesh, const Scene& scene, const RenderOptions& o,
                          bool wireframe) {
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h);
@@ -525,7 +517,7 @@ Image ladderSoftwareTile(const ResultMesh& mesh, const Scene& scene, const Rende
 }
 }  // namespace
 
-Image renderLadder(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options) {
+Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptions& options) {
   checkSize(options);
   if (options.backend != Backend::OsMesa)
     throw inputError("--ladder", "--backend osmesa (the local tiles are OpenGL-only)", "--backend software");
@@ -571,7 +563,7 @@ Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
-  const ResultMesh bounds = boundsOnly(local);
+  const ResultFile bounds = boundsOnly(local);
   viewProjection(bounds, effectiveCamera(bounds, o), w, h, &projection, &view);
   detail::LocalDrawList list = detail::buildLocalDrawList(local, o.shade);
   std::vector<uint8_t> rgb;
@@ -583,7 +575,7 @@ Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   return image;
 }
 
-std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions& o) {
+std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions& o) {
   raster::Target target(o.width, o.height, /*withItem=*/true, /*withColor=*/false);
   glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), o.width, o.height);
   std::vector<glm::vec4> clip;

@@ -15,15 +15,15 @@
 #include <glm/glm.hpp>
 
 #include "display/raster.h"
-#include "display/result_file.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/result_file.h"
 #include "mesh/scene.h"
 
 namespace rad::viewer {
 
 /// Parses "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F"; keys may come in any order and any subset
 /// may be given, the others keep `base`'s values. Throws InputError("--camera: expected ...").
-ViewCamera parseCamera(const std::string& text, const ViewCamera& base);
+Camera parseCamera(const std::string& text, const Camera& base);
 
 enum class Backend { OsMesa, Software };
 enum class Shading { Smooth, Flat };
@@ -33,7 +33,7 @@ struct RenderOptions {
   Shading shade = Shading::Smooth;
   Backend backend = Backend::OsMesa;
   std::optional<double> exposure;      ///< overrides the file's exposure
-  std::optional<ViewCamera> camera;    ///< overrides the file's camera
+  std::optional<Camera> camera;        ///< overrides the file's camera
   bool wireframe = false;              ///< overlay the element edges (both backends)
   int ssaa = 1;                        ///< supersampling factor per axis, box filter in linear light
   bool radiance = false;               ///< also produce the linear radiance image (B/π)
@@ -50,22 +50,23 @@ struct Image {
   std::vector<float> radiance;  ///< 3 floats per pixel, linear B/π; empty unless asked for
 };
 
-/// The camera used for a render: options.camera, else the file's, else a default view along +z.
-ViewCamera effectiveCamera(const ResultMesh& mesh, const RenderOptions& options);
+/// The camera used for a render: options.camera, else the file's, else defaultCamera of the
+/// mesh's bounding box (mesh/camera.h: a view along +z).
+Camera effectiveCamera(const ResultFile& mesh, const RenderOptions& options);
 /// The exposure used for a render: options.exposure, else the file's, else 1.
-double effectiveExposure(const ResultMesh& mesh, const RenderOptions& options);
+double effectiveExposure(const ResultFile& mesh, const RenderOptions& options);
 /// projection · view for a width × height picture (near and far planes fitted to the mesh's
 /// bounding box), as loaded into OpenGL with glLoadMatrixf.
-glm::mat4 viewProjection(const ResultMesh& mesh, const ViewCamera& camera, int width, int height,
+glm::mat4 viewProjection(const ResultFile& mesh, const Camera& camera, int width, int height,
                          glm::mat4* projection = nullptr, glm::mat4* view = nullptr);
 
 /// Renders with the chosen backend. Throws InputError on bad options, std::runtime_error when
 /// OpenGL (OSMesa) is unavailable.
-Image render(const ResultMesh& mesh, const RenderOptions& options);
+Image render(const ResultFile& mesh, const RenderOptions& options);
 
 /// The face index seen at every pixel (software raster core, no supersampling), TOP row first;
 /// raster::kNoItem where no face is seen. For tests and picking.
-std::vector<uint32_t> renderFaceIds(const ResultMesh& mesh, const RenderOptions& options);
+std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions& options);
 
 /// Writes the display colours as PNG, atomically. Throws InputError.
 void writePng(const std::string& path, const Image& image);
@@ -96,8 +97,9 @@ struct LocalScene {
 LocalScene prepareLocalScene(Scene scene);
 /// loadScene + prepareLocalScene.
 LocalScene loadLocalScene(const std::string& path);
-/// The camera of a local render: options.camera, else the scene's, else a default view along +z.
-ViewCamera effectiveCamera(const LocalScene& local, const RenderOptions& options);
+/// The camera of a local render: options.camera, else the scene's, else defaultCamera of the
+/// patch mesh's bounding box.
+Camera effectiveCamera(const LocalScene& local, const RenderOptions& options);
 /// Renders the local model (OSMesa). options.backend must be OsMesa; exposure and radiance are
 /// not used (InputError when set). Throws std::runtime_error when OSMesa is unavailable.
 Image renderLocal(const LocalScene& local, const RenderOptions& options);
@@ -112,7 +114,7 @@ Image renderLocal(const LocalScene& local, const RenderOptions& options);
 
 /// Renders the hybrid picture. The mesh must carry face `surface` indices valid in `scene`
 /// (InputError otherwise); options.backend must be OsMesa and radiance off (InputError).
-Image renderHybrid(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options);
+Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& options);
 
 // ---- The realism ladder (radview --ladder) ------------------------------------------------------
 // One picture of the same view (the result's camera, or options.camera) in kLadderTiles tiles of
@@ -133,7 +135,7 @@ constexpr int kLadderTiles = 7;
 constexpr int kLadderColumns = 4;
 constexpr double kLadderSpecular = 0.4;
 constexpr double kLadderShininess = 30;
-Image renderLadder(const ResultMesh& mesh, const Scene& scene, const RenderOptions& options);
+Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptions& options);
 
 namespace detail {
 /// Display byte (all three channels) of wireframe edges, in both backends.
@@ -165,7 +167,7 @@ struct HybridDrawList {
   std::vector<glm::vec4> colours;
   std::vector<LocalBatch> batches;
 };
-HybridDrawList buildHybridDrawList(const ResultMesh& mesh, const Scene& scene, Shading shade,
+HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, Shading shade,
                                    double exposure, bool storedColours);
 /// Radiosity emission plus fixed-function specular through OSMesa: bytes (RGB, BOTTOM row first).
 void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
@@ -184,7 +186,7 @@ struct DrawList {
   std::vector<glm::vec4> radiance;
 };
 /// storedColours: take the file's vertex colours (smooth shading at the file's exposure).
-DrawList buildDrawList(const ResultMesh& mesh, Shading shade, double exposure,
+DrawList buildDrawList(const ResultFile& mesh, Shading shade, double exposure,
                        bool storedColours = false);
 /// OpenGL rendering through OSMesa at width × height: bytes (RGB, BOTTOM row first) and, when
 /// radiance != nullptr, linear radiance (RGB floats, bottom row first).

@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/camera.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 #include "radiosity/vertex_radiosity.h"
@@ -23,14 +24,10 @@ constexpr double kExposureTarget = 0.8;
 /// 1 when nothing non-emitting is lit.
 double autoExposure(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
 
-/// A camera for scenes without one: looking along +z at the centre of the bounding box from
-/// far enough to see all of it.
-Camera defaultCamera(const Scene& scene);
-
-/// Writes the result mesh: per vertex position, normal, display colour sRGB(clamp(K·(B + ρ·a)))
-/// and linear radiosity B; per face the surface index and the element's own B. `ambient` (a) is
-/// added to the display colour only (zero once converged). With `direct`, vertex radiosities
-/// take their direct light from it. Atomic: temporary file, then rename.
+/// Writes the result file (mesh/result_file.h): per vertex position, normal, display colour
+/// sRGB(clamp(K·(B + ρ·a))) and linear radiosity B; per face the surface index and the element's
+/// own B. `ambient` (a) is added to the display colour only (zero once converged). With `direct`,
+/// vertex radiosities take their direct light from it. Atomic: temporary file, then rename.
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                  const glm::dvec3& ambient, double exposure, const Camera& camera,
                  const VertexDirect* direct = nullptr);

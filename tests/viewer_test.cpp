@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 
@@ -20,6 +21,7 @@
 #include "mesh/color.h"
 #include "mesh/error.h"
 #include "mesh/ply_writer.h"
+#include "mesh/result_file.h"
 
 namespace rad::viewer {
 namespace {
@@ -29,7 +31,7 @@ constexpr double kPi = 3.14159265358979323846;
 class ViewerTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    mesh_ = new ResultMesh(loadResult(RAD_VIEWER_INPUT));
+    mesh_ = new ResultFile(readResultFile(RAD_VIEWER_INPUT));
   }
   static void TearDownTestSuite() {
     delete mesh_;
@@ -42,10 +44,10 @@ class ViewerTest : public ::testing::Test {
     o.shade = shade;
     return o;
   }
-  static const ResultMesh& mesh() { return *mesh_; }
-  static ResultMesh* mesh_;
+  static const ResultFile& mesh() { return *mesh_; }
+  static ResultFile* mesh_;
 };
-ResultMesh* ViewerTest::mesh_ = nullptr;
+ResultFile* ViewerTest::mesh_ = nullptr;
 
 struct Agreement {
   double meanAbs = 0;     // per channel, in units of 1/255
@@ -74,7 +76,7 @@ Agreement compare(const Image& a, const Image& b) {
   return r;
 }
 
-TEST_F(ViewerTest, ReadsTheResultMesh) {
+TEST_F(ViewerTest, ReadsTheResultFile) {
   EXPECT_GT(mesh().faces.size(), 500u);
   ASSERT_TRUE(mesh().camera.has_value());
   EXPECT_DOUBLE_EQ(mesh().camera->eye.z, -800);
@@ -113,7 +115,7 @@ TEST_F(ViewerTest, SupersampledBackendsAgree) {
 
 /// Mean display colour over the pixels whose face satisfies `pick`, and the pixel count.
 template <class Pick>
-std::pair<glm::dvec3, size_t> regionMean(const ResultMesh& mesh, const Image& image,
+std::pair<glm::dvec3, size_t> regionMean(const ResultFile& mesh, const Image& image,
                                          const std::vector<uint32_t>& ids, Pick pick) {
   glm::dvec3 sum(0.0);
   size_t n = 0;
@@ -126,7 +128,7 @@ std::pair<glm::dvec3, size_t> regionMean(const ResultMesh& mesh, const Image& im
 }
 
 TEST_F(ViewerTest, PictureShowsRedAndGreenWallsAndTheLight) {
-  const ResultMesh& m = mesh();
+  const ResultFile& m = mesh();
   auto all = [&](auto test) {
     return [&m, test](const std::array<int, 3>& f) {
       return test(m.positions[f[0]]) && test(m.positions[f[1]]) && test(m.positions[f[2]]);
@@ -194,7 +196,7 @@ double footprintDistance(glm::dvec2 p, const std::vector<glm::dvec2>& quad) {
 
 // The floor around the blocks' bases (occluded and in their shadow) is darker than the open floor.
 TEST_F(ViewerTest, FloorAroundTheBlocksIsDarkerThanTheOpenFloor) {
-  const ResultMesh& m = mesh();
+  const ResultFile& m = mesh();
   const std::vector<glm::dvec2> shortBlock = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
   const std::vector<glm::dvec2> tallBlock = {{423, 247}, {265, 296}, {314, 456}, {472, 406}};
   auto nearest = [&](const std::array<int, 3>& f) {
@@ -223,7 +225,7 @@ TEST_F(ViewerTest, FloorAroundTheBlocksIsDarkerThanTheOpenFloor) {
 }
 
 TEST_F(ViewerTest, FlatShadingShowsEachElementsOwnValue) {
-  const ResultMesh& m = mesh();
+  const ResultFile& m = mesh();
   const double k = *m.exposure;
   for (Backend backend : {Backend::Software, Backend::OsMesa}) {
     RenderOptions o = options(backend, Shading::Flat);
@@ -264,7 +266,7 @@ TEST_F(ViewerTest, FlatShadingShowsEachElementsOwnValue) {
 }
 
 TEST_F(ViewerTest, RadianceIsRadiosityOverPi) {
-  const ResultMesh& m = mesh();
+  const ResultFile& m = mesh();
   RenderOptions o = options(Backend::Software, Shading::Flat, 128);
   o.radiance = true;
   Image sw = render(m, o);
@@ -397,7 +399,7 @@ TEST_F(ViewerTest, HybridRefusesWhatItCannotDraw) {
   o.radiance = true;
   EXPECT_THROW(renderHybrid(mesh(), scene, o), InputError);
   o.radiance = false;
-  ResultMesh noSurfaces = mesh();
+  ResultFile noSurfaces = mesh();
   noSurfaces.faceSurface.clear();
   EXPECT_THROW(renderHybrid(noSurfaces, scene, o), InputError);
   Scene fewer = scene;
@@ -457,7 +459,7 @@ TEST_F(ViewerTest, LadderRefusesWhatItCannotDraw) {
   o.wireframe = true;
   EXPECT_THROW(renderLadder(mesh(), scene, o), InputError);
   o.wireframe = false;
-  ResultMesh noSurfaces = mesh();
+  ResultFile noSurfaces = mesh();
   noSurfaces.faceSurface.clear();
   EXPECT_THROW(renderLadder(noSurfaces, scene, o), InputError);
 }
@@ -465,9 +467,9 @@ TEST_F(ViewerTest, LadderRefusesWhatItCannotDraw) {
 // ---- Back-face culling (--cull back) -----------------------------------------------------------
 
 /// Behind the box, looking at the outside of its back wall.
-ViewCamera behindTheBox() { return ViewCamera{{278, 273, 1200}, {278, 273, 0}, {0, 1, 0}, 39.3}; }
+Camera behindTheBox() { return Camera{{278, 273, 1200}, {278, 273, 0}, {0, 1, 0}, 39.3}; }
 
-bool onBackWall(const ResultMesh& mesh, uint32_t face) {
+bool onBackWall(const ResultFile& mesh, uint32_t face) {
   for (int v : mesh.faces[face])
     if (std::abs(mesh.positions[size_t(v)].z - 559.2f) > 0.5f) return false;
   return true;
@@ -534,7 +536,7 @@ TEST(ViewerInput, MissingRadiosityPropertiesAreNamed) {
   const std::string path = std::string(RAD_VIEWER_OUT) + "/unit_mesh_only.ply";
   writePly(path, ply);
   try {
-    loadResult(path);
+    readResultFile(path);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -543,18 +545,34 @@ TEST(ViewerInput, MissingRadiosityPropertiesAreNamed) {
                      "vertex radiosity_r, vertex radiosity_b, face radiosity_r, face radiosity_g, "
                      "face radiosity_b");
   }
-  EXPECT_THROW(loadResult(std::string(RAD_VIEWER_OUT) + "/nowhere.ply"), InputError);
+  EXPECT_THROW(readResultFile(std::string(RAD_VIEWER_OUT) + "/nowhere.ply"), InputError);
+}
+
+// The one reader and the one writer agree byte for byte: what the reader keeps is all the
+// writer writes.
+TEST(ViewerInput, ResultFileRoundTripsByteForByte) {
+  const ResultFile read = readResultFile(RAD_VIEWER_INPUT);
+  const std::string path = std::string(RAD_VIEWER_OUT) + "/unit_round_trip.ply";
+  writeResultFile(path, read);
+  auto bytes = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string original = bytes(RAD_VIEWER_INPUT), written = bytes(path);
+  EXPECT_GT(original.size(), 1000u);
+  EXPECT_TRUE(original == written) << path << " differs from " << RAD_VIEWER_INPUT;
 }
 
 TEST(ViewerInput, CameraText) {
-  ViewCamera base;
+  Camera base;
   base.eye = {0, 0, -5};
-  ViewCamera c = parseCamera("eye=1,2,3,target=4,5,6,up=0,0,1,fov=30", base);
+  base.target = {0, 0, 1};
+  Camera c = parseCamera("eye=1,2,3,target=4,5,6,up=0,0,1,fov=30", base);
   EXPECT_EQ(c.eye, glm::dvec3(1, 2, 3));
   EXPECT_EQ(c.target, glm::dvec3(4, 5, 6));
   EXPECT_EQ(c.up, glm::dvec3(0, 0, 1));
   EXPECT_EQ(c.fovYDeg, 30);
-  ViewCamera partial = parseCamera("fov=60", base);
+  Camera partial = parseCamera("fov=60", base);
   EXPECT_EQ(partial.eye, base.eye);
   EXPECT_EQ(partial.fovYDeg, 60);
   for (const char* bad : {"", "eye=1,2", "eye=1,2,3,4", "pos=1,2,3", "1,2,3", "eye=1,x,3", "fov=0",
@@ -577,7 +595,7 @@ namespace {
 // A converged result's stored colours are exactly sRGB(clamp(K·B)), so drawing them or
 // computing them gives the same list; an unconverged result's carry the ambient term too.
 TEST(ViewerColours, StoredColoursAreTheComputedOnesOnceConverged) {
-  ResultMesh mesh = loadResult(RAD_VIEWER_INPUT);
+  ResultFile mesh = readResultFile(RAD_VIEWER_INPUT);
   ASSERT_FALSE(mesh.vertexColour.empty());
   ASSERT_TRUE(mesh.exposure.has_value());
   auto stored = detail::buildDrawList(mesh, Shading::Smooth, *mesh.exposure, true);
@@ -620,7 +638,7 @@ glm::dvec3 meanAround(const Image& image, int x, int y, int r = 2) {
 
 /// The pixel (x, y, top row first) where the world point p lands in a render of `local`.
 glm::ivec2 pixelOf(const LocalScene& local, const RenderOptions& o, const glm::dvec3& p) {
-  ResultMesh bounds;
+  ResultFile bounds;
   bounds.boundsMin = local.boundsMin;
   bounds.boundsMax = local.boundsMax;
   glm::mat4 mvp = viewProjection(bounds, effectiveCamera(local, o), o.width, o.height);
@@ -913,7 +931,7 @@ TEST_F(LocalTest, TwoSidedLightingLightsBackFacesWithTheReversedNormal) {
   // one-sided lighting uses the front normal (towards the light: lit); two-sided lighting
   // reverses it for back faces (away from the light: the ambient term only).
   RenderOptions o = localOptions();
-  o.camera = ViewCamera{{278, 273, 1400}, {278, 273, 0}, {0, 1, 0}, 39.3};
+  o.camera = Camera{{278, 273, 1400}, {278, 273, 0}, {0, 1, 0}, 39.3};
   const glm::ivec2 wall = pixelOf(*empty_, o, {278, 300, 559.2});
   double value[2];
   for (int twoSided = 0; twoSided < 2; ++twoSided) {
@@ -933,7 +951,7 @@ TEST_F(LocalTest, LocalViewerMovesTheSpecularHighlight) {
   // (x = 100); local viewer: at the mirror point between lamp and eye (x = 200). Either way the
   // other point's half vector is about 6° off the wall's normal (cos¹⁰⁰ 6° = 0.58).
   RenderOptions o = localOptions();
-  o.camera = ViewCamera{{278, 273, 200}, {278, 273, 559.2}, {0, 1, 0}, 60};
+  o.camera = Camera{{278, 273, 200}, {278, 273, 559.2}, {0, 1, 0}, 60};
   const glm::ivec2 behindLamp = pixelOf(*empty_, o, {100, 273, 559.2});
   const glm::ivec2 mirror = pixelOf(*empty_, o, {200, 273, 559.2});
   ASSERT_GT(std::abs(behindLamp.x - mirror.x), 20);

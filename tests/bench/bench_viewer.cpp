@@ -8,6 +8,7 @@
 
 #include "display/viewer.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/result_file.h"
 #include "mesh/scene.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/result.h"
@@ -15,8 +16,8 @@
 namespace {
 
 /// The result mesh, made once: Cornell box at element edge 10 mm, one shot of the light.
-const rad::viewer::ResultMesh& result() {
-  static std::unique_ptr<rad::viewer::ResultMesh> cached;
+const rad::ResultFile& result() {
+  static std::unique_ptr<rad::ResultFile> cached;
   if (!cached) {
     rad::Scene scene = rad::loadScene(std::string(RAD_SOURCE_DIR) + "/scenes/cornell.json");
     rad::PatchMesh mesh = rad::buildPatchMesh(scene, {10.0, 30.0});
@@ -28,7 +29,7 @@ const rad::viewer::ResultMesh& result() {
     const std::string path = "/tmp/bench_viewer_cornell.ply";
     rad::writeResult(path, mesh, solver.radiosity(), glm::dvec3(0.0),
                      rad::autoExposure(mesh, solver.radiosity()), *scene.camera);
-    cached = std::make_unique<rad::viewer::ResultMesh>(rad::viewer::loadResult(path));
+    cached = std::make_unique<rad::ResultFile>(rad::readResultFile(path));
   }
   return *cached;
 }
