@@ -1,0 +1,48 @@
+#pragma once
+// Where the form factors of a shot come from: hemicubes in the solver, exact injected
+// factors in tests.
+#include <memory>
+#include <vector>
+
+#include "radiosity/hemicube.h"
+#include "radiosity/shooter_samples.h"
+
+namespace rad {
+
+class PatchMesh;
+
+/// The factors from one shooter sample to every element. Calls with different `worker`
+/// numbers may run concurrently.
+class FactorSource {
+ public:
+  virtual ~FactorSource() = default;
+  /// Factors from sample `index` of patch `patch` to every element (sparse), and what escaped.
+  virtual void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+                       int worker = 0) = 0;
+  /// How many workers may call factors() at once.
+  virtual int workers() const { return 1; }
+};
+
+/// Hemicubes over the whole mesh, turned by (seed, patch, sample), the patch's own elements
+/// excluded. Emitting patches may use a finer resolution: direct light carries the sharpest
+/// detail (shadows, the floor at a block's base), and emitters shoot from few points.
+class HemicubeFactors : public FactorSource {
+ public:
+  /// workers: hemicubes that may render at once (0: one per hardware thread).
+  /// emitterResolution: for emitting patches (0: `resolution`).
+  HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed,
+                  int workers = 0, int emitterResolution = 0);
+  void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+               int worker = 0) override;
+  int workers() const override { return int(hemicubes_.size()); }
+
+ private:
+  const PatchMesh& mesh_;
+  HemicubeGeometry geometry_;
+  std::vector<std::unique_ptr<Hemicube>> hemicubes_;         // one per worker
+  std::vector<std::unique_ptr<Hemicube>> emitterHemicubes_;  // one per worker, if finer
+  std::vector<bool> emits_;                                   // per patch
+  unsigned seed_;
+};
+
+}  // namespace rad

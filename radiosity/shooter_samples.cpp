@@ -1,0 +1,191 @@
+#include "radiosity/shooter_samples.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/geometry.h"
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+namespace {
+
+/// A part of an element a shooter sample may take: `share` of the element's power.
+struct Part {
+  int element;
+  double share, area;
+  glm::dvec3 centroid;
+  std::array<glm::dvec3, 3> corners;
+};
+
+/// Cuts triangle t into m² congruent triangles (each edge into m equal pieces).
+void subdivide(int element, const std::array<glm::dvec3, 3>& t, int m, std::vector<Part>& out) {
+  const double area = triangleArea(t[0], t[1], t[2]) / double(m * m), share = 1.0 / double(m * m);
+  for (const auto& c : congruentSplit(t, m))
+    out.push_back({element, share, area, (c[0] + c[1] + c[2]) / 3.0, c});
+}
+
+/// The longest axis (0, 1, 2) of the bounding box of the parts' centroids.
+int longestAxis(const std::vector<Part>& parts) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const Part& p : parts) {
+    lo = glm::min(lo, p.centroid);
+    hi = glm::max(hi, p.centroid);
+  }
+  glm::dvec3 extent = hi - lo;
+  return extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+}
+
+/// Where to cut the ordered parts so that the first `first` of `strata` strata get their
+/// share of the area: the running area nearest that share.
+size_t areaCut(const std::vector<Part>& parts, int strata, int first) {
+  double total = 0;
+  for (const Part& p : parts) total += p.area;
+  const double target = total * first / strata;
+  // Each side keeps at least as many parts as strata it must make, where it can.
+  const size_t lowest = std::min<size_t>(first, parts.size() - 1);
+  const size_t highest = std::max<size_t>(lowest, parts.size() - std::min<size_t>(strata - first, parts.size() - 1));
+  size_t cut = lowest;
+  double running = 0, best = HUGE_VAL;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    running += parts[i].area;
+    if (i + 1 >= lowest && i + 1 <= highest && std::abs(running - target) < best)
+      best = std::abs(running - target), cut = i + 1;
+  }
+  return cut;
+}
+
+/// Splits `parts` into `strata` groups of about equal area: ordered along the longest axis of
+/// their centroids' bounding box and cut where the running area best matches the share of the
+/// first half of the strata; each half is split in turn.
+void bisectByArea(std::vector<Part> parts, int strata, std::vector<std::vector<Part>>& out) {
+  if (strata <= 1 || parts.size() <= 1) {
+    out.push_back(std::move(parts));
+    return;
+  }
+  const int axis = longestAxis(parts);
+  std::stable_sort(parts.begin(), parts.end(), [&](const Part& a, const Part& b) {
+    return a.centroid[axis] < b.centroid[axis];
+  });
+  const int first = strata / 2;
+  const size_t cut = areaCut(parts, strata, first);
+  std::vector<Part> tail(parts.begin() + long(cut), parts.end());
+  parts.resize(cut);
+  bisectByArea(std::move(parts), first, out);
+  bisectByArea(std::move(tail), strata - first, out);
+}
+
+/// Whether point x lies in triangle c (counter-clockwise about `normal`), edges included.
+bool insideTriangle(const std::array<glm::dvec3, 3>& c, const glm::dvec3& x, const glm::dvec3& normal) {
+  bool inside = true;
+  for (int k = 0; k < 3; ++k)
+    inside = inside && glm::dot(glm::cross(c[(k + 1) % 3] - c[k], x - c[k]), normal) >= 0;
+  return inside;
+}
+
+/// Where a stratum shoots from: its area-weighted centroid, or, should that fall outside its
+/// parts (a stratum bent round a corner of the patch), the nearest part centroid.
+glm::dvec3 stratumPoint(const std::vector<Part>& stratum, const glm::dvec3& normal) {
+  glm::dvec3 centre(0.0);
+  double area = 0;
+  for (const Part& p : stratum) {
+    centre += p.area * p.centroid;
+    area += p.area;
+  }
+  centre /= area;
+  glm::dvec3 nearest = stratum[0].centroid;
+  for (const Part& p : stratum) {
+    if (insideTriangle(p.corners, centre, normal)) return centre;
+    if (glm::length(p.centroid - centre) < glm::length(nearest - centre)) nearest = p.centroid;
+  }
+  return nearest;
+}
+
+/// The patch's elements cut into enough m×m parts that it has at least `count` of them,
+/// spread by area.
+std::vector<Part> patchParts(const PatchMesh& mesh, const Patch& p, int count) {
+  std::vector<Part> parts;
+  for (int e : p.elements) {
+    double quota = double(count) * mesh.area(e) / p.area;
+    int m = std::max(1, int(std::ceil(std::sqrt(quota) - 1e-9)));
+    subdivide(e, mesh.corners(e), m, parts);
+  }
+  return parts;
+}
+
+/// Adds a part's share of its element's power to the sample.
+void addShare(ShooterSample& s, const Part& part) {
+  if (!s.elements.empty() && s.elements.back() == part.element) {
+    s.weights.back() += part.share;
+    return;
+  }
+  auto at = std::find(s.elements.begin(), s.elements.end(), part.element);
+  if (at != s.elements.end()) {
+    s.weights[size_t(at - s.elements.begin())] += part.share;
+  } else {
+    s.elements.push_back(part.element);
+    s.weights.push_back(part.share);
+  }
+}
+
+/// The mean patch diameter (the hash's cell size), 1 without patches.
+double meanDiameter(const PatchMesh& mesh) {
+  if (mesh.patches.empty()) return 1;
+  double sum = 0;
+  for (const Patch& p : mesh.patches) sum += p.diameter;
+  return std::max(sum / double(mesh.patches.size()), 1e-300);
+}
+
+}  // namespace
+
+SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options)
+    : mesh_(mesh), options_(options), centroids_(meanDiameter(mesh)) {
+  if (options.proximitySamples <= 0 || mesh.patches.empty()) return;
+  for (int e = 0; e < mesh.elementCount(); ++e) centroids_.insert(mesh.centroid(e), e);
+}
+
+double SampleCounter::nearestFacing(int patch, double reach) const {
+  const Patch& p = mesh_.patches[patch];
+  double nearest = HUGE_VAL;
+  centroids_.visit(p.centroid - glm::dvec3(reach), p.centroid + glm::dvec3(reach), [&](int e) {
+    // An element of another plane facing the patch (occlusion ignored).
+    glm::dvec3 d = mesh_.centroid(e) - p.centroid;
+    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, mesh_.normal(e)) >= 0) return;
+    nearest = std::min(nearest, glm::length(d));
+  });
+  return nearest;
+}
+
+int SampleCounter::operator()(int patch) const {
+  const Patch& p = mesh_.patches[patch];
+  if (mesh_.emits(patch)) return options_.emitterSamples;
+  const int fewest = options_.shooterSamples;
+  const int most = std::max(fewest, options_.emitterSamples);
+  if (options_.proximitySamples <= 0) return fewest;
+  // Only elements nearer than D·√(k / fewest) ask for more than the fewest points.
+  const double reach = p.diameter * std::sqrt(options_.proximitySamples / fewest);
+  const double nearest = nearestFacing(patch, reach);
+  if (!(nearest < reach)) return fewest;
+  const double ratio = p.diameter / nearest;
+  const double wanted = std::ceil(options_.proximitySamples * ratio * ratio - 1e-9);
+  return int(std::min<double>(std::max<double>(wanted, fewest), most));
+}
+
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count) {
+  const Patch& p = mesh.patches[patch];
+  std::vector<std::vector<Part>> strata;
+  bisectByArea(patchParts(mesh, p, count), count, strata);
+  std::vector<ShooterSample> out;
+  for (const auto& stratum : strata) {
+    ShooterSample s;
+    s.point = stratumPoint(stratum, p.normal);
+    s.normal = p.normal;
+    for (const Part& part : stratum) addShare(s, part);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace rad

@@ -1,0 +1,26 @@
+#pragma once
+// What the progressive solver is asked for: when to stop, how hard to shoot, from how many
+// points, and how much memory may keep form factors between shots.
+#include <cstddef>
+
+#include "radiosity/settings.h"
+
+namespace rad {
+
+/// The defaults are the command line's (radiosity/settings.h), except ω: plain shooting here.
+struct SolverOptions {
+  double tolerance = 1e-3;   ///< stop when unshot/emitted power (luminance) falls below
+  long maxShots = 0;         ///< 0: no limit
+  double timeLimit = 0;      ///< seconds; 0: no limit
+  double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
+  int emitterSamples = kDefaultEmitterSamples;  ///< points on an emitting patch
+  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
+  /// More points on patches near other surfaces (sampleCount).
+  double proximitySamples = kDefaultProximitySamples;
+  /// Memory for keeping each sample's form factors after its first shot, so that a patch
+  /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
+  /// A fixed budget, whatever the scene size; 0 recomputes every time.
+  size_t factorCacheBytes = size_t(kDefaultFactorCacheMb * 1024 * 1024);
+};
+
+}  // namespace rad
