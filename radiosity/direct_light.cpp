@@ -1,10 +1,8 @@
 #include "radiosity/direct_light.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 #include <unordered_map>
 
 #include <embree3/rtcore.h>
@@ -13,8 +11,9 @@
 #include "mesh/color.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "mesh/parallel.h"
 #include "radiosity/point_polygon.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooter_samples.h"
 
 namespace rad {
 namespace {
@@ -57,6 +56,18 @@ constexpr double kRayOffset = 1e-5;
 constexpr double kRayOffsetOfElement = 1e-3;
 constexpr double kMinRayOffset = 1e-6;
 
+/// The emitting patches, and per surface side (surface·2 + side) their area.
+std::vector<int> emittingPatches(const PatchMesh& mesh, std::vector<double>& sideArea) {
+  std::vector<int> emitters;
+  sideArea.assign(mesh.surfaces.size() * 2, 0.0);
+  for (int p = 0; p < int(mesh.patches.size()); ++p) {
+    if (!mesh.emits(p)) continue;
+    emitters.push_back(p);
+    sideArea[size_t(mesh.patches[p].surface * 2 + mesh.patches[p].side)] += mesh.patches[p].area;
+  }
+  return emitters;
+}
+
 }  // namespace
 
 /// Embree's device and scene: every element, in coordinates (p − centre)/size so that single
@@ -71,6 +82,11 @@ struct DirectLight::Rays {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
+
+  /// centre and scale: the mesh's bounding box.
+  void frame(const PatchMesh& mesh);
+  /// Embree's scene of every element of the mesh, normalised to its bounding box.
+  void build(const PatchMesh& mesh);
 
   /// Whether the segment from a to b (scene coordinates) is blocked.
   bool blocked(const glm::dvec3& a, const glm::dvec3& b) const {
@@ -90,76 +106,27 @@ struct DirectLight::Rays {
   }
 };
 
-DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter,
-                         int workers)
-    : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize) {
-  workers_ = workers > 0 ? workers : std::max(1, int(std::thread::hardware_concurrency()));
-  // The lights: every emitting patch, with samples by its share of its surface side.
-  std::vector<int> emitters;
-  std::vector<double> sideArea(mesh.surfaces.size() * 2, 0.0);
-  for (int p = 0; p < int(mesh.patches.size()); ++p) {
-    if (!mesh.emits(p)) continue;
-    emitters.push_back(p);
-    sideArea[size_t(mesh.patches[p].surface * 2 + mesh.patches[p].side)] += mesh.patches[p].area;
-  }
-  enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterPatches;
-  if (!enabled_) return;
-  // Many glowing surfaces share one budget of samples (rays per vertex).
-  const int sides = int(std::count_if(sideArea.begin(), sideArea.end(), [](double a) { return a > 0; }));
-  samplesPerEmitter = std::max(1, std::min(samplesPerEmitter, kMaxLightSamples / sides));
-  const double offset = kRayOffset * sceneSize;
-  auto addSample = [&](const glm::dvec3& at, const glm::dvec3& normal) {
-    onLight_.push_back(at);
-    points_.push_back(at + normal * offset);
-  };
-  for (int p : emitters) {
-    const Patch& patch = mesh.patches[p];
-    const double share = patch.area / sideArea[size_t(patch.surface * 2 + patch.side)];
-    const int count = std::max(1, int(std::lround(samplesPerEmitter * share)));
-    LightPolygon light;
-    light.normal = patch.normal;
-    light.emission = mesh.emission(patch.elements[0]);
-    light.outline = patchOutline(mesh, patch);
-    if (!light.outline.empty()) {
-      light.first = int(points_.size());
-      for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
-      light.count = int(points_.size()) - light.first;
-      lights_.push_back(std::move(light));
-      continue;
-    }
-    // No simple outline (a patch round a hole): each element is a light with its own share of
-    // the samples, the centroids of an m×m split of the triangle.
-    for (int e : patch.elements) {
-      LightPolygon part = light;
-      const auto c = mesh.corners(e);
-      part.outline.assign(c.begin(), c.end());
-      part.first = int(points_.size());
-      const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
-      for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, part.normal);
-      part.count = int(points_.size()) - part.first;
-      lights_.push_back(std::move(part));
-    }
-  }
-  samples_ = int(points_.size());
-
-  // The occluders: every element.
-  Rays& r = *rays_impl_;
+void DirectLight::Rays::frame(const PatchMesh& mesh) {
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
   for (auto v : mesh.mesh.vertices()) {
     const glm::dvec3 p = PatchMesh::toGlm(mesh.mesh.point(v));
     lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
-  r.centre = (lo + hi) * 0.5;
-  r.scale = std::max(glm::length(hi - lo), 1e-300);
-  r.device = rtcNewDevice("threads=1");
-  if (!r.device) throw std::runtime_error("embree: no device");
-  r.scene = rtcNewScene(r.device);
-  rtcSetSceneFlags(r.scene, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry g = rtcNewGeometry(r.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  centre = (lo + hi) * 0.5;
+  scale = std::max(glm::length(hi - lo), 1e-300);
+}
+
+void DirectLight::Rays::build(const PatchMesh& mesh) {
+  frame(mesh);
+  device = rtcNewDevice("threads=1");
+  if (!device) throw std::runtime_error("embree: no device");
+  scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                          3 * sizeof(float), mesh.mesh.n_vertices()));
   for (auto v : mesh.mesh.vertices()) {
-    const glm::dvec3 p = (PatchMesh::toGlm(mesh.mesh.point(v)) - r.centre) / r.scale;
+    const glm::dvec3 p = (PatchMesh::toGlm(mesh.mesh.point(v)) - centre) / scale;
     for (int k = 0; k < 3; ++k) vb[3 * v.idx() + k] = float(p[k]);
   }
   auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
@@ -169,10 +136,63 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
     for (auto v : mesh.mesh.fv_range(f)) ib[3 * f.idx() + k++] = unsigned(v.idx());
   }
   rtcCommitGeometry(g);
-  rtcAttachGeometry(r.scene, g);
+  rtcAttachGeometry(scene, g);
   rtcReleaseGeometry(g);
-  rtcCommitScene(r.scene);
-  if (rtcGetDeviceError(r.device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
+  rtcCommitScene(scene);
+  if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
+}
+
+DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter,
+                         int workers)
+    : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize), workers_(workerCount(workers)) {
+  // The lights: every emitting patch, with samples by its share of its surface side.
+  std::vector<double> sideArea;
+  const std::vector<int> emitters = emittingPatches(mesh, sideArea);
+  enabled_ = !emitters.empty() && int(emitters.size()) <= kMaxRayEmitterPatches;
+  if (!enabled_) return;
+  // Many glowing surfaces share one budget of samples (rays per vertex).
+  const int sides = int(std::count_if(sideArea.begin(), sideArea.end(), [](double a) { return a > 0; }));
+  samplesPerEmitter = std::max(1, std::min(samplesPerEmitter, kMaxLightSamples / sides));
+  for (int p : emitters) {
+    const Patch& patch = mesh.patches[p];
+    const double share = patch.area / sideArea[size_t(patch.surface * 2 + patch.side)];
+    addLight(mesh, p, std::max(1, int(std::lround(samplesPerEmitter * share))));
+  }
+  samples_ = int(points_.size());
+  // The occluders: every element.
+  rays_impl_->build(mesh);
+}
+
+void DirectLight::addSample(const glm::dvec3& at, const glm::dvec3& normal) {
+  onLight_.push_back(at);
+  points_.push_back(at + normal * (kRayOffset * sceneSize_));
+}
+
+void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
+  const Patch& patch = mesh.patches[p];
+  LightPolygon light;
+  light.normal = patch.normal;
+  light.emission = mesh.emission(patch.elements[0]);
+  light.outline = patchOutline(mesh, patch);
+  if (!light.outline.empty()) {
+    light.first = int(points_.size());
+    for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
+    light.count = int(points_.size()) - light.first;
+    lights_.push_back(std::move(light));
+    return;
+  }
+  // No simple outline (a patch round a hole): each element is a light with its own share of
+  // the samples, the centroids of an m×m split of the triangle.
+  for (int e : patch.elements) {
+    LightPolygon part = light;
+    const auto c = mesh.corners(e);
+    part.outline.assign(c.begin(), c.end());
+    part.first = int(points_.size());
+    const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
+    for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, part.normal);
+    part.count = int(points_.size()) - part.first;
+    lights_.push_back(std::move(part));
+  }
 }
 
 DirectLight::~DirectLight() = default;
@@ -194,12 +214,7 @@ DirectLight::Probe DirectLight::probeAt(const PatchMesh& mesh, TriMesh::VertexHa
   return probe;
 }
 
-VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
-  VertexLight out;
-  out.visible.assign(size_t((samples_ + 63) / 64), 0);
-  out.weight.assign(lights_.size(), 0.0f);
-  const glm::dvec3 &n = probe.normal, &rho = probe.rho;
-  if (rho == glm::dvec3(0.0)) return out;  // black: nothing to show
+glm::dvec3 DirectLight::rayOrigin(const Probe& probe) const {
   // Everything is evaluated a little off the surface and inwards: the light a point on a
   // surface's edge shows is the limit from inside the surface (a floor point at the foot of a
   // glowing wall sees half its hemisphere filled by it, not the wall edge-on).
@@ -207,59 +222,63 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   if (probe.size > 0)
     offset = std::clamp(kRayOffsetOfElement * probe.size, kMinRayOffset * sceneSize_, offset);
   const double inwards = glm::length(probe.inwards);
-  const glm::dvec3 p = probe.point + n * offset +
-                       (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
-  const glm::dvec3& origin = p;
-  for (size_t t = 0; t < lights_.size(); ++t) {
-    const LightPolygon& light = lights_[t];
-    if (glm::dot(light.normal, p - light.outline[0]) <= 0) continue;  // behind the emitter
-    const double F = pointPolygonFormFactor(p, n, light.outline);
-    if (!(F > 0)) continue;
-    // The visible share of the light: each sample weighted by its own differential factor,
-    // cosθ·cosθ'/r² (samples stand for equal areas), so that near a light its close parts
-    // count more; the exact unoccluded factor F carries the magnitude.
-    int above = 0;
-    double all = 0, visible = 0;
-    for (int j = light.first; j < light.first + light.count; ++j) {
-      const glm::dvec3 d = onLight_[size_t(j)] - p;
-      const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
-      if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
-      const double w = cosHere * cosThere / (r2 * r2);
-      ++above;
-      all += w;
-      if (probe.visible) {
-        if (!((*probe.visible)[size_t(j / 64)] >> (j % 64) & 1)) continue;
-      } else {
-        ++raysCast;
-        if (rays_impl_->blocked(origin, points_[size_t(j)])) continue;
-      }
-      visible += w;
-      out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
-    }
-    if (above == 0 || !(all > 0)) continue;
-    const glm::dvec3 full = rho * light.emission * F;
-    out.radiosity += full * (visible / all);
-    out.weight[t] = float(luminance(full) / above);  // the mean sample's share
+  return probe.point + probe.normal * offset +
+         (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
+}
+
+bool DirectLight::sampleVisible(const Probe& probe, const glm::dvec3& origin, int j, long& raysCast) const {
+  if (probe.visible) return (*probe.visible)[size_t(j / 64)] >> (j % 64) & 1;
+  ++raysCast;
+  return !rays_impl_->blocked(origin, points_[size_t(j)]);
+}
+
+void DirectLight::addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
+                             long& raysCast) const {
+  const glm::dvec3& n = probe.normal;
+  const LightPolygon& light = lights_[t];
+  if (glm::dot(light.normal, p - light.outline[0]) <= 0) return;  // behind the emitter
+  const double F = pointPolygonFormFactor(p, n, light.outline);
+  if (!(F > 0)) return;
+  // The visible share of the light: each sample weighted by its own differential factor,
+  // cosθ·cosθ'/r² (samples stand for equal areas), so that near a light its close parts
+  // count more; the exact unoccluded factor F carries the magnitude.
+  int above = 0;
+  double all = 0, visible = 0;
+  for (int j = light.first; j < light.first + light.count; ++j) {
+    const glm::dvec3 d = onLight_[size_t(j)] - p;
+    const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
+    if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
+    const double w = cosHere * cosThere / (r2 * r2);
+    ++above;
+    all += w;
+    if (!sampleVisible(probe, p, j, raysCast)) continue;
+    visible += w;
+    out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
   }
+  if (above == 0 || !(all > 0)) return;
+  const glm::dvec3 full = probe.rho * light.emission * F;
+  out.radiosity += full * (visible / all);
+  out.weight[t] = float(luminance(full) / above);  // the mean sample's share
+}
+
+VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
+  VertexLight out;
+  out.visible.assign(size_t((samples_ + 63) / 64), 0);
+  out.weight.assign(lights_.size(), 0.0f);
+  if (probe.rho == glm::dvec3(0.0)) return out;  // black: nothing to show
+  const glm::dvec3 p = rayOrigin(probe);
+  for (size_t t = 0; t < lights_.size(); ++t) addLightAt(probe, p, t, out, raysCast);
   return out;
 }
 
 std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) {
   std::vector<VertexLight> out(probes.size());
   if (!enabled_) return out;
-  std::atomic<size_t> next{0};
-  std::atomic<long> rays{0};
-  auto work = [&] {
-    long cast = 0;
-    for (size_t i; (i = next.fetch_add(64)) < probes.size();)
-      for (size_t k = i; k < std::min(probes.size(), i + 64); ++k) out[k] = compute(probes[k], cast);
-    rays += cast;
-  };
-  std::vector<std::thread> threads;
-  for (int w = 1; w < workers_; ++w) threads.emplace_back(work);
-  work();
-  for (auto& t : threads) t.join();
-  rays_ += rays;
+  std::vector<long> cast(size_t(workers_), 0);  // rays per worker
+  parallelFor(
+      probes.size(), workers_,
+      [&](size_t k, int worker) { out[k] = compute(probes[k], cast[size_t(worker)]); }, 64);
+  for (long c : cast) rays_ += c;
   return out;
 }
 

@@ -80,6 +80,18 @@ class DirectLight {
   std::vector<VertexLight> lightAt(const std::vector<Probe>& probes);
 
  private:
+  /// Adds the light(s) of emitting patch `p` with `count` samples.
+  void addLight(const PatchMesh& mesh, int p, int count);
+  /// Adds a sample point on a light with unit normal `normal`.
+  void addSample(const glm::dvec3& at, const glm::dvec3& normal);
+  /// Where the probe's rays start: a little off the surface and inwards.
+  glm::dvec3 rayOrigin(const Probe& probe) const;
+  /// Whether sample j is visible from `origin` (given by the probe, or by a ray).
+  bool sampleVisible(const Probe& probe, const glm::dvec3& origin, int j, long& raysCast) const;
+  /// Adds light t's share seen from p (the probe's ray origin) to `out`.
+  void addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
+                  long& raysCast) const;
+  /// The direct light at one probe, counting the rays it casts.
   VertexLight compute(const Probe& probe, long& raysCast) const;
   Probe probeAt(const PatchMesh& mesh, TriMesh::VertexHandle v) const;
 

@@ -2,13 +2,34 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "mesh/color.h"
 #include "mesh/error.h"
+#include "mesh/parallel.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
+namespace {
+
+/// Adds the columns of `patch`'s elements to G: the factors of its `samples` shooter samples,
+/// computed by `worker` into `ff`.
+void addPatchColumns(Eigen::MatrixXd& G, const PatchMesh& mesh, FactorSource& factors, int patch,
+                     int samples, FormFactors& ff, int worker) {
+  const auto shooters = patchSamples(mesh, patch, samples);
+  for (int index = 0; index < int(shooters.size()); ++index) {
+    const ShooterSample& s = shooters[index];
+    factors.factors(patch, index, s, ff, worker);
+    for (size_t k = 0; k < ff.elements.size(); ++k) {
+      int j = ff.elements[k];
+      for (size_t m = 0; m < s.elements.size(); ++m) {
+        int i = s.elements[m];
+        G(j, i) += s.weights[m] * ff.factors[k] * mesh.area(i) / mesh.area(j);
+      }
+    }
+  }
+}
+
+}  // namespace
 
 TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
                                  const SolverOptions& options) {
@@ -26,29 +47,11 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
     E_[e] = mesh.emission(e);
   }
   const SampleCounter count(mesh, options);
-  // Workers take patches round-robin; a patch writes only its own elements' columns.
-  auto work = [&](int worker, int stride) {
-    FormFactors ff;
-    for (int p = worker; p < int(mesh.patches.size()); p += stride) {
-      auto samples = patchSamples(mesh, p, count(p));
-      for (int index = 0; index < int(samples.size()); ++index) {
-        const ShooterSample& s = samples[index];
-        factors.factors(p, index, s, ff, worker);
-        for (size_t k = 0; k < ff.elements.size(); ++k) {
-          int j = ff.elements[k];
-          for (size_t m = 0; m < s.elements.size(); ++m) {
-            int i = s.elements[m];
-            G_(j, i) += s.weights[m] * ff.factors[k] * mesh.area(i) / mesh.area(j);
-          }
-        }
-      }
-    }
-  };
-  const int workers = std::max(1, factors.workers());
-  std::vector<std::thread> threads;
-  for (int w = 1; w < workers; ++w) threads.emplace_back(work, w, workers);
-  work(0, workers);
-  for (auto& t : threads) t.join();
+  // Workers take whole patches; a patch writes only its own elements' columns.
+  std::vector<FormFactors> scratch(size_t(std::max(1, factors.workers())));
+  parallelFor(mesh.patches.size(), int(scratch.size()), [&](size_t p, int worker) {
+    addPatchColumns(G_, mesh, factors, int(p), count(int(p)), scratch[size_t(worker)], worker);
+  });
 }
 
 std::vector<glm::dvec3> TransportMatrix::solveDirect() const {

@@ -1,12 +1,12 @@
 #include "radiosity/pathtrace/path_tracer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <thread>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "mesh/parallel.h"
 
 namespace rad::pathtrace {
 namespace {
@@ -43,7 +43,46 @@ double relativeError(const glm::dvec3& sum, const glm::dvec3& sumSq, long n) {
   return worst;
 }
 
+/// Russian roulette keeps the throughput T near where it started (tStart): false ends the
+/// path; a surviving path's T is raised by the odds it survived.
+bool survives(glm::dvec3& T, double tStart, Random& rng) {
+  const double survive = std::min(1.0, maxOf(T) / tStart);
+  if (rng.next() >= survive) return false;
+  T /= survive;
+  return true;
+}
+
 }  // namespace
+
+void PathTracer::addLightSample(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& T,
+                                Random& rng, glm::dvec3& B) const {
+  const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+  const LightSample s = scene_.sampleLight(u0, u1, u2);
+  const glm::dvec3 d = s.point - x;
+  const double r2 = glm::dot(d, d), cx = glm::dot(nx, d);
+  double cy = -glm::dot(s.normal, d);
+  const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
+  if (s.twoSided) cy = std::abs(cy);
+  if (cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0) &&
+      !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide)) {
+    const double r = std::sqrt(r2);
+    const double pLight = s.pdf * r2 * r / cy, pBounce = cx / (r * kPi);  // per solid angle
+    // E/π · cosθ cosθ' / r² / pdf, cosθ = cx/r, cosθ' = cy/r.
+    B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf)) * powerHeuristic(pLight, pBounce);
+  }
+}
+
+void PathTracer::addBounceEmission(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& w,
+                                   const TraceHit& hit, const glm::dvec3& T, glm::dvec3& B) const {
+  const double lightPdf = scene_.lightPdf(hit.triangle);
+  if (!(lightPdf > 0)) return;
+  const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
+  // The bounce's estimate of π·L is the exitance E where it lands.
+  const glm::dvec3 d = hit.point - x;
+  const double r2 = glm::dot(d, d), cy = std::abs(glm::dot(t.normal, d)), r = std::sqrt(r2);
+  const double pLight = lightPdf * r2 * r / cy, pBounce = glm::dot(nx, w) / kPi;
+  B += T * scene_.material(t.surface).emission * powerHeuristic(pBounce, pLight);
+}
 
 glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int surface,
                                  Random& rng) const {
@@ -57,45 +96,17 @@ glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int s
     // point on the emitters chosen by power (next-event estimation), and where the cosine-
     // weighted bounce lands on an emitter. Either alone has unbounded variance somewhere: the
     // first beside an emitter's edge (1/r²), the second for small bright emitters.
-    if (scene_.emits()) {
-      const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
-      const LightSample s = scene_.sampleLight(u0, u1, u2);
-      const glm::dvec3 d = s.point - x;
-      const double r2 = glm::dot(d, d), cx = glm::dot(nx, d);
-      double cy = -glm::dot(s.normal, d);
-      const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
-      if (s.twoSided) cy = std::abs(cy);
-      if (cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0) &&
-          !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide)) {
-        const double r = std::sqrt(r2);
-        const double pLight = s.pdf * r2 * r / cy, pBounce = cx / (r * kPi);  // per solid angle
-        // E/π · cosθ cosθ' / r² / pdf, cosθ = cx/r, cosθ' = cy/r.
-        B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf)) * powerHeuristic(pLight, pBounce);
-      }
-    }
+    if (scene_.emits()) addLightSample(x, nx, T, rng, B);
     const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
     const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
     if (hit.triangle < 0) break;  // escaped
     const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
     if (!hit.front && !scene_.twoSided(t.surface)) break;  // the back of a one-sided surface absorbs
-    const Material& m = scene_.material(t.surface);
-    const double lightPdf = scene_.lightPdf(hit.triangle);
-    if (lightPdf > 0) {
-      // The bounce's estimate of π·L is the exitance E where it lands.
-      const glm::dvec3 d = hit.point - x;
-      const double r2 = glm::dot(d, d), cy = std::abs(glm::dot(t.normal, d)), r = std::sqrt(r2);
-      const double pLight = lightPdf * r2 * r / cy, pBounce = glm::dot(nx, w) / kPi;
-      B += T * m.emission * powerHeuristic(pBounce, pLight);
-    }
-    T *= m.reflectance;
+    addBounceEmission(x, nx, w, hit, T, B);
+    T *= scene_.material(t.surface).reflectance;
     x = hit.point;
     nx = hit.front ? t.normal : -t.normal;
-    if (depth >= kRouletteDepth) {
-      // Russian roulette keeps the throughput near where it started.
-      const double survive = std::min(1.0, maxOf(T) / tStart);
-      if (rng.next() >= survive) break;
-      T /= survive;
-    }
+    if (depth >= kRouletteDepth && !survives(T, tStart, rng)) break;
     if (!(maxOf(T) > 0)) break;
   }
   return B;
@@ -132,19 +143,15 @@ PointEstimate PathTracer::estimate(const SurfacePoint& point, uint64_t stream,
 std::vector<PointEstimate> PathTracer::estimate(const std::vector<SurfacePoint>& points,
                                                 const TraceOptions& options) const {
   std::vector<PointEstimate> out(points.size());
-  std::atomic<size_t> next{0}, done{0};
-  auto work = [&] {
-    for (size_t i; (i = next++) < points.size(); ++done) out[i] = estimate(points[i], i, options);
-  };
-  const int workers = options.workers > 0 ? options.workers : std::max(1, int(std::thread::hardware_concurrency()));
-  std::vector<std::thread> threads;
-  for (int w = 0; w < workers; ++w) threads.emplace_back(work);
-  if (options.progress)
-    while (done < points.size()) {
-      options.progress(double(done) / double(std::max<size_t>(1, points.size())));
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-  for (auto& t : threads) t.join();
+  std::atomic<size_t> done{0};
+  const double total = double(std::max<size_t>(1, points.size()));
+  if (options.progress) options.progress(0.0);
+  // Worker 0 is the calling thread: it reports the share done after each of its points.
+  parallelFor(points.size(), workerCount(options.workers), [&](size_t i, int worker) {
+    out[i] = estimate(points[i], i, options);
+    const size_t finished = ++done;
+    if (worker == 0 && options.progress) options.progress(double(finished) / total);
+  });
   if (options.progress) options.progress(1.0);
   return out;
 }

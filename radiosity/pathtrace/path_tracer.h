@@ -45,7 +45,8 @@ struct TraceOptions {
   double relativeError = 0.01;  ///< else: stop when every channel's SE / B is below this
   long minPaths = kDefaultMinPaths, maxPaths = kDefaultMaxPaths;
   int workers = 0;  ///< threads (0: one per hardware thread)
-  /// Called now and then with the share of points done, from the calling thread.
+  /// Called with the share of points done, from the calling thread: at the start, after each
+  /// point the calling thread traced (it is one of the workers), and at the end.
   std::function<void(double)> progress;
 };
 
@@ -68,6 +69,15 @@ class PathTracer {
   long pathsTraced() const { return traced_; }
 
  private:
+  /// Next-event estimation at x (unit normal nx): light from a point on the emitters chosen
+  /// by power, weighted by the power heuristic against the bounce, added to B with throughput T.
+  void addLightSample(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& T, Random& rng,
+                      glm::dvec3& B) const;
+  /// The emission where the bounce from x along w landed (hit), weighted by the power
+  /// heuristic against next-event estimation, added to B with throughput T.
+  void addBounceEmission(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& w,
+                         const TraceHit& hit, const glm::dvec3& T, glm::dvec3& B) const;
+
   const TraceScene& scene_;
   mutable std::atomic<long> traced_{0};
 };
