@@ -38,6 +38,103 @@ inline glm::vec4 faceClip(int f, const std::array<float, 3>& p, float near) {
   }
 }
 
+/// The top face's R×R pixels: each pixel's factor is the exact factor of its square, seen
+/// from the origin (normal +z).
+std::vector<double> topPixelFactors(int R) {
+  const glm::dvec3 origin(0.0), up(0, 0, 1);
+  const double h = 2.0 / R;
+  std::vector<double> top(size_t(R) * R);
+  for (int j = 0; j < R; ++j)
+    for (int i = 0; i < R; ++i) {
+      double x0 = -1 + i * h, y0 = -1 + j * h;
+      top[size_t(j) * R + i] = pointPolygonFormFactor(
+          origin, up, {{x0, y0, 1}, {x0 + h, y0, 1}, {x0 + h, y0 + h, 1}, {x0, y0 + h, 1}});
+    }
+  return top;
+}
+
+/// A side face's R×R/2 pixels, row 0 on the base plane, exact as on the top face.
+std::vector<double> sidePixelFactors(int R) {
+  const glm::dvec3 origin(0.0), up(0, 0, 1);
+  const double h = 2.0 / R;
+  std::vector<double> side(size_t(R) * R / 2);
+  for (int j = 0; j < R / 2; ++j)
+    for (int i = 0; i < R; ++i) {
+      double x0 = -1 + i * h, z0 = j * h;  // side face x = 1 ... mirrored faces share the table
+      side[size_t(j) * R + i] = pointPolygonFormFactor(
+          origin, up, {{1, x0, z0}, {1, x0 + h, z0}, {1, x0 + h, z0 + h}, {1, x0, z0 + h}});
+    }
+  return side;
+}
+
+/// The accumulator's slots: the elements, then sky, then back faces (every item id past the
+/// elements but the sky's is an occluder's back); `seen` is the bit set of the slots written.
+struct Slots {
+  double* acc;
+  uint64_t* seen;
+  uint32_t n, skySlot, backSlot;
+
+  uint32_t slot(uint32_t id) const { return id < n ? id : id == raster::kNoItem ? skySlot : backSlot; }
+  void add(uint32_t id, double value) {
+    const uint32_t s = slot(id);
+    acc[s] += value;
+    seen[s >> 6] |= uint64_t(1) << (s & 63);
+  }
+  /// Slot s's sum, the slot cleared.
+  double take(uint32_t s) {
+    const double value = acc[s];
+    acc[s] = 0;
+    seen[s >> 6] &= ~(uint64_t(1) << (s & 63));
+    return value;
+  }
+};
+
+/// Adds each pixel's delta form factor (delta[k]) to the slot of the item it shows (item[k]).
+inline void accumulateFace(const uint32_t* item, const double* delta, size_t count, Slots& slots) {
+  size_t k = 0;
+#if defined(__SSE2__)
+  // Neighbouring pixels mostly see the same element: while four pixels at a time continue
+  // the current run, sum them in two independent partial sums; a chunk where the run ends
+  // flushes the run and adds its own pixels one by one.
+  uint32_t run = item[0];
+  __m128d part0 = _mm_setzero_pd(), part1 = _mm_setzero_pd();
+  auto flush = [&] {
+    alignas(16) double lanes[4];
+    _mm_store_pd(lanes, part0);
+    _mm_store_pd(lanes + 2, part1);
+    slots.add(run, (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]));
+    part0 = part1 = _mm_setzero_pd();
+  };
+  __m128i runs = _mm_set1_epi32(int(run));
+  for (; k + 4 <= count; k += 4) {
+    const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(item + k));
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(ids, runs)) == 0xFFFF) {
+      part0 = _mm_add_pd(part0, _mm_loadu_pd(delta + k));
+      part1 = _mm_add_pd(part1, _mm_loadu_pd(delta + k + 2));
+      continue;
+    }
+    flush();
+    for (size_t i = k; i < k + 4; ++i) slots.add(item[i], delta[i]);
+    run = item[k + 3];
+    runs = _mm_set1_epi32(int(run));
+  }
+  flush();
+  for (; k < count; ++k) slots.add(item[k], delta[k]);  // the last 0-3 pixels
+#else
+  uint32_t run = item[0];
+  double sum = 0;
+  for (; k < count; ++k) {
+    if (item[k] != run) {
+      slots.add(run, sum);
+      run = item[k];
+      sum = 0;
+    }
+    sum += delta[k];
+  }
+  slots.add(run, sum);
+#endif
+}
+
 }  // namespace
 
 double FormFactors::sum() const {
@@ -73,23 +170,8 @@ const DeltaFormFactors& DeltaFormFactors::forResolution(int R) {
   RAD_CHECK(R >= 2 && R % 2 == 0);
   auto d = std::make_unique<DeltaFormFactors>();
   d->resolution = R;
-  const glm::dvec3 origin(0.0), up(0, 0, 1);
-  const double h = 2.0 / R;
-  // Each pixel's factor is the exact factor of its square, seen from the origin (normal +z).
-  d->top.resize(size_t(R) * R);
-  for (int j = 0; j < R; ++j)
-    for (int i = 0; i < R; ++i) {
-      double x0 = -1 + i * h, y0 = -1 + j * h;
-      d->top[size_t(j) * R + i] = pointPolygonFormFactor(
-          origin, up, {{x0, y0, 1}, {x0 + h, y0, 1}, {x0 + h, y0 + h, 1}, {x0, y0 + h, 1}});
-    }
-  d->side.resize(size_t(R) * R / 2);
-  for (int j = 0; j < R / 2; ++j)
-    for (int i = 0; i < R; ++i) {
-      double x0 = -1 + i * h, z0 = j * h;  // side face x = 1 ... mirrored faces share the table
-      d->side[size_t(j) * R + i] = pointPolygonFormFactor(
-          origin, up, {{1, x0, z0}, {1, x0 + h, z0}, {1, x0 + h, z0 + h}, {1, x0, z0 + h}});
-    }
+  d->top = topPixelFactors(R);
+  d->side = sidePixelFactors(R);
   // The exact integrals sum to 1 up to round-off; normalise so that it holds to 1e-15.
   double sum = 0;
   for (double f : d->top) sum += f;
@@ -145,8 +227,13 @@ void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation
     glm::dvec3 d = P[i] - eye;
     local_[i] = {float(glm::dot(d, u)), float(glm::dot(d, v)), float(glm::dot(d, n))};
   }
+  keepAboveBase();
+}
+
+void Hemicube::keepAboveBase() {
   // Only triangles reaching above the base plane can show on any face: often half the scene
   // is behind the point, and no face needs to look at it.
+  const auto& I = geometry_.indices;
   drawIndices_.resize(I.size());
   drawIds_.resize(ids_.size());
   size_t kept = 0;
@@ -186,79 +273,24 @@ void Hemicube::renderFaces() {
 void Hemicube::accumulate(FormFactors& out) {
   out.elements.clear();
   out.factors.clear();
-  // Slots: the elements, then sky, then back faces (every other id is an occluder's back).
-  const uint32_t n = uint32_t(geometry_.elementCount()), skySlot = n, backSlot = n + 1;
-  double* const acc = accumulator_.data();
-  uint64_t* const seen = seen_.data();
-  auto slot = [&](uint32_t id) { return id < n ? id : id == raster::kNoItem ? skySlot : backSlot; };
-  auto add = [&](uint32_t id, double value) {
-    const uint32_t s = slot(id);
-    acc[s] += value;
-    seen[s >> 6] |= uint64_t(1) << (s & 63);
-  };
-  for (int f = 0; f < 5; ++f) {
-    const uint32_t* item = faces_[f]->item.data();
-    const double* delta = (f == 0 ? delta_.top : delta_.side).data();
-    const size_t count = faces_[f]->item.size();
-    size_t k = 0;
-#if defined(__SSE2__)
-    // Neighbouring pixels mostly see the same element: while four pixels at a time continue
-    // the current run, sum them in two independent partial sums; a chunk where the run ends
-    // flushes the run and adds its own pixels one by one.
-    uint32_t run = item[0];
-    __m128d part0 = _mm_setzero_pd(), part1 = _mm_setzero_pd();
-    auto flush = [&] {
-      alignas(16) double lanes[4];
-      _mm_store_pd(lanes, part0);
-      _mm_store_pd(lanes + 2, part1);
-      add(run, (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]));
-      part0 = part1 = _mm_setzero_pd();
-    };
-    __m128i runs = _mm_set1_epi32(int(run));
-    for (; k + 4 <= count; k += 4) {
-      const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(item + k));
-      if (_mm_movemask_epi8(_mm_cmpeq_epi32(ids, runs)) == 0xFFFF) {
-        part0 = _mm_add_pd(part0, _mm_loadu_pd(delta + k));
-        part1 = _mm_add_pd(part1, _mm_loadu_pd(delta + k + 2));
-        continue;
-      }
-      flush();
-      for (size_t i = k; i < k + 4; ++i) add(item[i], delta[i]);
-      run = item[k + 3];
-      runs = _mm_set1_epi32(int(run));
-    }
-    flush();
-    for (; k < count; ++k) add(item[k], delta[k]);  // the last 0-3 pixels
-#else
-    uint32_t run = item[0];
-    double sum = 0;
-    for (; k < count; ++k) {
-      if (item[k] != run) {
-        add(run, sum);
-        run = item[k];
-        sum = 0;
-      }
-      sum += delta[k];
-    }
-    add(run, sum);
-#endif
-  }
-  out.sky = acc[skySlot];
-  out.backFaces = acc[backSlot];
-  acc[skySlot] = acc[backSlot] = 0;
-  seen[skySlot >> 6] &= ~(uint64_t(1) << (skySlot & 63));
-  seen[backSlot >> 6] &= ~(uint64_t(1) << (backSlot & 63));
+  const uint32_t n = uint32_t(geometry_.elementCount());
+  Slots slots{accumulator_.data(), seen_.data(), n, n, n + 1};
+  for (int f = 0; f < 5; ++f)
+    accumulateFace(faces_[f]->item.data(), (f == 0 ? delta_.top : delta_.side).data(),
+                   faces_[f]->item.size(), slots);
+  out.sky = slots.take(slots.skySlot);
+  out.backFaces = slots.take(slots.backSlot);
   // Ascending element order, from the bit set of the slots seen.
   for (size_t w = 0; w < seen_.size(); ++w) {
-    for (uint64_t bits = seen[w]; bits; bits &= bits - 1) {
+    for (uint64_t bits = seen_[w]; bits; bits &= bits - 1) {
       const uint32_t e = uint32_t(w * 64 + size_t(__builtin_ctzll(bits)));
-      if (acc[e] != 0) {
+      if (accumulator_[e] != 0) {
         out.elements.push_back(int(e));
-        out.factors.push_back(acc[e]);
+        out.factors.push_back(accumulator_[e]);
       }
-      acc[e] = 0;
+      accumulator_[e] = 0;
     }
-    seen[w] = 0;
+    seen_[w] = 0;
   }
 }
 

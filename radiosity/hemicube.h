@@ -87,7 +87,12 @@ class Hemicube {
   static constexpr double kEyeOffset = 1e-6;
 
  private:
+  /// The triangles reaching above the base plane, the only ones any face can show:
+  /// drawIndices_ and drawIds_ from ids_ and local_.
+  void keepAboveBase();
+  /// Draws the five faces' item buffers.
   void renderFaces();
+  /// Sums each face's delta form factors per item into `out` (elements ascending).
   void accumulate(FormFactors& out);
 
   const HemicubeGeometry& geometry_;

@@ -40,6 +40,58 @@ glm::dvec3 nearestWeights(const glm::dvec3& x, const glm::dvec3& a, const glm::d
   return best;
 }
 
+/// The relative errors (shown − reference) / reference over the points added, by channel
+/// and by surface (in order of first appearance); channels of a reference below `floor` or
+/// not above 0 are skipped.
+class ErrorSums {
+ public:
+  explicit ErrorSums(const glm::dvec3& floor) : floor_(floor) {}
+
+  /// Adds point `index`: reference p, `shown` there.
+  void add(int index, const ReferencePoint& p, const glm::dvec3& shown) {
+    auto [it, added] = surfaceIndex_.emplace(p.surface, s_.perSurface.size());
+    if (added) s_.perSurface.push_back({p.surface, 0, 0, 0}), surfaceSq_.push_back(0), surfaceSum_.push_back(0);
+    ++s_.perSurface[it->second].points;
+    for (int c = 0; c < 3; ++c) addChannel(index, p, shown, c, it->second);
+  }
+
+  /// The summary of the points added.
+  ErrorSummary summary() {
+    for (int c = 0; c < 3; ++c)
+      if (count_[c] > 0) s_.rmsRgb[c] = std::sqrt(sumSq_[c] / count_[c]), s_.meanRgb[c] = sum_[c] / count_[c];
+    if (s_.used) s_.rms = std::sqrt(total_ / s_.used), s_.referenceNoise = std::sqrt(noise_ / s_.used);
+    // Per surface, over the channels used there.
+    for (size_t k = 0; k < s_.perSurface.size(); ++k) {
+      const int used = s_.perSurface[k].channels;
+      if (used) s_.perSurface[k].rms = std::sqrt(surfaceSq_[k] / used), s_.perSurface[k].mean = surfaceSum_[k] / used;
+    }
+    return s_;
+  }
+
+ private:
+  void addChannel(int index, const ReferencePoint& p, const glm::dvec3& shown, int c, size_t surface) {
+    if (!(p.B[c] > floor_[c]) || !(p.B[c] > 0)) {
+      ++s_.skipped;
+      return;
+    }
+    const double e = (shown[c] - p.B[c]) / p.B[c];
+    ++s_.used;
+    ++s_.perSurface[surface].channels;
+    sum_[c] += e, sumSq_[c] += e * e, count_[c] += 1;
+    total_ += e * e;
+    noise_ += (p.standardError[c] / p.B[c]) * (p.standardError[c] / p.B[c]);
+    surfaceSq_[surface] += e * e, surfaceSum_[surface] += e;
+    if (std::abs(e) > std::abs(s_.worst)) s_.worst = e, s_.worstPoint = index, s_.worstShown = shown;
+  }
+
+  glm::dvec3 floor_;
+  ErrorSummary s_;
+  glm::dvec3 sumSq_{0.0}, sum_{0.0}, count_{0.0};
+  double noise_ = 0, total_ = 0;
+  std::map<std::string, size_t> surfaceIndex_;
+  std::vector<double> surfaceSq_, surfaceSum_;
+};
+
 }  // namespace
 
 TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<ReferencePoint> points,
@@ -56,26 +108,30 @@ TrueError::TrueError(const PatchMesh& mesh, const Scene& scene, std::vector<Refe
     if (named == surfaceOf.end())
       throw inputError(source + ": point " + std::to_string(i + 1), "a surface of " + scene.path,
                        "'" + p.surface + "' (a reference of another scene?)");
-    const std::vector<int>& candidates = elementsOf[size_t(named->second)];
-    double nearest = HUGE_VAL;
-    for (int e : candidates) {
-      if (glm::dot(mesh.normal(e), p.normal) < kFacing) continue;
-      const auto c = mesh.corners(e);
-      const glm::dvec3 w = nearestWeights(p.position, c[0], c[1], c[2]);
-      const double d = glm::length(p.position - (w.x * c[0] + w.y * c[1] + w.z * c[2]));
-      if (d >= nearest) continue;
-      nearest = d;
-      int k = 0;
-      for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) where_[i].vertex[k++] = v.idx();
-      where_[i].weight = w;
-    }
-    if (nearest > reach) where_[i] = Location{}, ++notInResult_;
+    if (locate(mesh, elementsOf[size_t(named->second)], i) > reach) where_[i] = Location{}, ++notInResult_;
   }
   // The brightest lit value, emitters left out: a point on a lamp must not darken the rest.
   for (const auto& p : points_)
     if (!scene.materials[size_t(scene.surfaces[size_t(surfaceOf.at(p.surface))].material)].emits())
       floor_ = glm::max(floor_, p.B);
   floor_ *= kDarkShare;
+}
+
+double TrueError::locate(const PatchMesh& mesh, const std::vector<int>& candidates, size_t i) {
+  const ReferencePoint& p = points_[i];
+  double nearest = HUGE_VAL;
+  for (int e : candidates) {
+    if (glm::dot(mesh.normal(e), p.normal) < kFacing) continue;
+    const auto c = mesh.corners(e);
+    const glm::dvec3 w = nearestWeights(p.position, c[0], c[1], c[2]);
+    const double d = glm::length(p.position - (w.x * c[0] + w.y * c[1] + w.z * c[2]));
+    if (d >= nearest) continue;
+    nearest = d;
+    int k = 0;
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) where_[i].vertex[k++] = v.idx();
+    where_[i].weight = w;
+  }
+  return nearest;
 }
 
 std::vector<glm::dvec3> TrueError::shown(const std::vector<glm::dvec3>& vertexValue) const {
@@ -90,43 +146,9 @@ std::vector<glm::dvec3> TrueError::shown(const std::vector<glm::dvec3>& vertexVa
 
 ErrorSummary TrueError::measure(const std::vector<glm::dvec3>& vertexValue) const {
   const std::vector<glm::dvec3> value = shown(vertexValue);
-  ErrorSummary s;
-  glm::dvec3 sumSq(0.0), sum(0.0), count(0.0);
-  double noise = 0, total = 0;
-  std::map<std::string, size_t> surfaceIndex;
-  std::vector<double> surfaceSq, surfaceSum;
-  for (size_t i = 0; i < points_.size(); ++i) {
-    const ReferencePoint& p = points_[i];
-    auto [it, added] = surfaceIndex.emplace(p.surface, s.perSurface.size());
-    if (added) s.perSurface.push_back({p.surface, 0, 0, 0}), surfaceSq.push_back(0), surfaceSum.push_back(0);
-    ErrorSummary::Surface& table = s.perSurface[it->second];
-    ++table.points;
-    for (int c = 0; c < 3; ++c) {
-      if (!(p.B[c] > floor_[c]) || !(p.B[c] > 0)) {
-        ++s.skipped;
-        continue;
-      }
-      const double e = (value[i][c] - p.B[c]) / p.B[c];
-      ++s.used;
-      sum[c] += e, sumSq[c] += e * e, count[c] += 1;
-      total += e * e;
-      noise += (p.standardError[c] / p.B[c]) * (p.standardError[c] / p.B[c]);
-      surfaceSq[it->second] += e * e, surfaceSum[it->second] += e;
-      if (std::abs(e) > std::abs(s.worst)) s.worst = e, s.worstPoint = int(i), s.worstShown = value[i];
-    }
-  }
-  for (int c = 0; c < 3; ++c)
-    if (count[c] > 0) s.rmsRgb[c] = std::sqrt(sumSq[c] / count[c]), s.meanRgb[c] = sum[c] / count[c];
-  if (s.used) s.rms = std::sqrt(total / s.used), s.referenceNoise = std::sqrt(noise / s.used);
-  // Per surface, over the channels used there.
-  std::vector<int> used(s.perSurface.size(), 0);
-  for (size_t i = 0; i < points_.size(); ++i)
-    for (int c = 0; c < 3; ++c) used[surfaceIndex[points_[i].surface]] += points_[i].B[c] > floor_[c] && points_[i].B[c] > 0;
-  for (size_t k = 0; k < s.perSurface.size(); ++k) {
-    s.perSurface[k].channels = used[k];
-    if (used[k]) s.perSurface[k].rms = std::sqrt(surfaceSq[k] / used[k]), s.perSurface[k].mean = surfaceSum[k] / used[k];
-  }
-  return s;
+  ErrorSums sums(floor_);
+  for (size_t i = 0; i < points_.size(); ++i) sums.add(int(i), points_[i], value[i]);
+  return sums.summary();
 }
 
 }  // namespace rad

@@ -59,6 +59,10 @@ class TrueError {
     int vertex[3] = {-1, -1, -1};
     glm::dvec3 weight{0.0};
   };
+  /// Locates point i at the nearest point of the candidate elements facing its way (where_[i]);
+  /// returns its distance (HUGE_VAL when none faces it).
+  double locate(const PatchMesh& mesh, const std::vector<int>& candidates, size_t i);
+
   std::vector<ReferencePoint> points_;
   std::vector<Location> where_;
   glm::dvec3 floor_{0.0};

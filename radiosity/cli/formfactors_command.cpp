@@ -50,56 +50,89 @@ int centralElement(const PatchMesh& mesh, int surface) {
 
 glm::dvec3 vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
-void runFormFactors(const FormFactorOptions& o) {
-  Scene scene = loadScene(o.scene);
-  Settings settings = resolveSettings(scene, o.flags);
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
-
-  glm::dvec3 x, n;
+/// Where the factors are seen from: a point and its unit normal, the elements that receive
+/// nothing (the surface looked from), the shooter number that turns the hemicube, and the
+/// surface (-1 for a point given by the user).
+struct Viewpoint {
+  glm::dvec3 x{0.0}, n{0.0};
   std::vector<int> excluded;
   uint64_t shooter = 0;
   int fromSurface = -1;
-  if (!o.from.empty()) {
-    std::string names;
-    for (size_t s = 0; s < scene.surfaces.size(); ++s) {
-      if (scene.surfaces[s].name == o.from) fromSurface = int(s);
-      names += (s ? ", " : "") + scene.surfaces[s].name;
-    }
-    if (fromSurface < 0)
-      throw inputError("--from", "the name of a surface of " + scene.path + " (" + names + ")",
-                       "\"" + o.from + "\"");
-    int e = centralElement(mesh, fromSurface);
-    x = mesh.centroid(e);
-    n = mesh.normal(e);
-    shooter = uint64_t(e);
-    for (int k = 0; k < mesh.elementCount(); ++k)
-      if (mesh.surface(k) == fromSurface) excluded.push_back(k);
-  } else {
-    x = vec3(o.point);
-    n = vec3(o.normal);
-    for (double c : o.point)
-      if (!std::isfinite(c)) throw inputError("--point", "finite coordinates", "NaN or infinity");
-    if (!(glm::length(n) > 0) || !std::isfinite(glm::length(n)))
-      throw inputError("--normal", "a non-zero finite vector", "a zero or non-finite one");
-    n = glm::normalize(n);
+};
+
+/// The middle of the surface named `name` (--from).
+Viewpoint surfaceViewpoint(const Scene& scene, const PatchMesh& mesh, const std::string& name) {
+  Viewpoint view;
+  std::string names;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    if (scene.surfaces[s].name == name) view.fromSurface = int(s);
+    names += (s ? ", " : "") + scene.surfaces[s].name;
   }
+  if (view.fromSurface < 0)
+    throw inputError("--from", "the name of a surface of " + scene.path + " (" + names + ")",
+                     "\"" + name + "\"");
+  int e = centralElement(mesh, view.fromSurface);
+  view.x = mesh.centroid(e);
+  view.n = mesh.normal(e);
+  view.shooter = uint64_t(e);
+  for (int k = 0; k < mesh.elementCount(); ++k)
+    if (mesh.surface(k) == view.fromSurface) view.excluded.push_back(k);
+  return view;
+}
 
-  // The full scene, then each surface alone: equal factors mean nothing occludes it.
-  HemicubeGeometry all = HemicubeGeometry::fromMesh(mesh);
-  double rotation = hemicubeRotation(settings.seed, shooter, 0);
-  Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
-  FormFactors ff;
-  hemicube.compute(x, n, rotation, ff, excluded);
-  std::vector<double> perSurface(scene.surfaces.size(), 0.0);
-  for (size_t k = 0; k < ff.elements.size(); ++k) perSurface[mesh.surface(ff.elements[k])] += ff.factors[k];
+/// The point and normal given by --point and --normal.
+Viewpoint pointViewpoint(const FormFactorOptions& o) {
+  Viewpoint view;
+  view.x = vec3(o.point);
+  view.n = vec3(o.normal);
+  for (double c : o.point)
+    if (!std::isfinite(c)) throw inputError("--point", "finite coordinates", "NaN or infinity");
+  if (!(glm::length(view.n) > 0) || !std::isfinite(glm::length(view.n)))
+    throw inputError("--normal", "a non-zero finite vector", "a zero or non-finite one");
+  view.n = glm::normalize(view.n);
+  return view;
+}
 
+/// Surface s's row: its hemicube factor (`hemicube`, in the full scene) and, when drawing it
+/// alone gives the same factor (nothing occludes it), the exact factor beside it.
+nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, const Settings& settings,
+                                  const Viewpoint& view, double rotation, size_t s, double hemicube) {
+  HemicubeGeometry alone;
+  double exact = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (mesh.surface(e) != int(s)) continue;
+    auto c = mesh.corners(e);
+    alone.addTriangle(c[0], c[1], c[2]);
+    if (glm::dot(mesh.normal(e), view.x - c[0]) > 0)  // only the lit side receives
+      exact += pointPolygonFormFactor(view.x, view.n, {c[0], c[1], c[2]});
+  }
+  Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
+  FormFactors ffAlone;
+  single.compute(view.x, view.n, rotation, ffAlone);
+  double fAlone = 0;
+  for (double f : ffAlone.factors) fAlone += f;
+  nlohmann::ordered_json row;
+  row["index"] = s;
+  row["name"] = scene.surfaces[s].name;
+  row["hemicube"] = hemicube;
+  bool unoccluded = std::abs(fAlone - hemicube) <= kSamePixels;
+  row["occluded"] = !unoccluded;
+  if (unoccluded) {
+    row["exact"] = exact;
+    row["relative_difference"] = exact > 0 ? (hemicube - exact) / exact : 0.0;
+  }
+  return row;
+}
+
+/// What the factors are of (scene, point, settings) and the full hemicube's totals; the
+/// surfaces' rows to come.
+nlohmann::ordered_json summary(const Scene& scene, const PatchMesh& mesh, const Settings& settings,
+                               const Viewpoint& view, const FormFactors& ff) {
   nlohmann::ordered_json out;
   out["scene"] = scene.path;
-  out["point"] = {x.x, x.y, x.z};
-  out["normal"] = {n.x, n.y, n.z};
-  if (fromSurface >= 0) out["from"] = scene.surfaces[fromSurface].name;
+  out["point"] = {view.x.x, view.x.y, view.x.z};
+  out["normal"] = {view.n.x, view.n.y, view.n.z};
+  if (view.fromSurface >= 0) out["from"] = scene.surfaces[view.fromSurface].name;
   out["hemicube_resolution"] = settings.hemicubeResolution;
   out["seed"] = settings.seed;
   out["elements"] = mesh.elementCount();
@@ -107,34 +140,30 @@ void runFormFactors(const FormFactorOptions& o) {
   out["back_faces"] = ff.backFaces;
   out["sum"] = ff.sum();
   out["surfaces"] = nlohmann::json::array();
-  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
-    if (int(s) == fromSurface) continue;
-    HemicubeGeometry alone;
-    double exact = 0;
-    for (int e = 0; e < mesh.elementCount(); ++e) {
-      if (mesh.surface(e) != int(s)) continue;
-      auto c = mesh.corners(e);
-      alone.addTriangle(c[0], c[1], c[2]);
-      if (glm::dot(mesh.normal(e), x - c[0]) > 0)  // only the lit side receives
-        exact += pointPolygonFormFactor(x, n, {c[0], c[1], c[2]});
-    }
-    Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
-    FormFactors ffAlone;
-    single.compute(x, n, rotation, ffAlone);
-    double fAlone = 0;
-    for (double f : ffAlone.factors) fAlone += f;
-    nlohmann::ordered_json row;
-    row["index"] = s;
-    row["name"] = scene.surfaces[s].name;
-    row["hemicube"] = perSurface[s];
-    bool unoccluded = std::abs(fAlone - perSurface[s]) <= kSamePixels;
-    row["occluded"] = !unoccluded;
-    if (unoccluded) {
-      row["exact"] = exact;
-      row["relative_difference"] = exact > 0 ? (perSurface[s] - exact) / exact : 0.0;
-    }
-    out["surfaces"].push_back(row);
-  }
+  return out;
+}
+
+void runFormFactors(const FormFactorOptions& o) {
+  Scene scene = loadScene(o.scene);
+  Settings settings = resolveSettings(scene, o.flags);
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  printWarnings(scene.warnings);
+  printWarnings(mesh.warnings);
+  const Viewpoint view = o.from.empty() ? pointViewpoint(o) : surfaceViewpoint(scene, mesh, o.from);
+
+  // The full scene, then each surface alone: equal factors mean nothing occludes it.
+  HemicubeGeometry all = HemicubeGeometry::fromMesh(mesh);
+  double rotation = hemicubeRotation(settings.seed, view.shooter, 0);
+  Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
+  FormFactors ff;
+  hemicube.compute(view.x, view.n, rotation, ff, view.excluded);
+  std::vector<double> perSurface(scene.surfaces.size(), 0.0);
+  for (size_t k = 0; k < ff.elements.size(); ++k) perSurface[mesh.surface(ff.elements[k])] += ff.factors[k];
+
+  nlohmann::ordered_json out = summary(scene, mesh, settings, view, ff);
+  for (size_t s = 0; s < scene.surfaces.size(); ++s)
+    if (int(s) != view.fromSurface)
+      out["surfaces"].push_back(surfaceRow(scene, mesh, settings, view, rotation, s, perSurface[s]));
   std::cout << out.dump(2) << "\n";
   if (!std::cout) throw std::runtime_error("standard output: write error");
 }

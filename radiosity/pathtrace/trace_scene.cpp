@@ -34,6 +34,31 @@ double angleAt(const glm::dvec2& p, const glm::dvec2& at, const glm::dvec2& q) {
   return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
 }
 
+/// Whether no other corner of the ring lies inside triangle (p, c, q).
+bool emptyTriangle(const std::vector<glm::dvec2>& pts, const std::vector<int>& ring, int p, int c, int q) {
+  bool empty = true;
+  for (size_t j = 0; j < ring.size() && empty; ++j) {
+    const int k = ring[j];
+    if (k != p && k != c && k != q) empty = !insideTriangle(pts[k], pts[p], pts[c], pts[q]);
+  }
+  return empty;
+}
+
+/// The corner of the ring to clip: the first ear, else the most convex corner.
+size_t nextEar(const std::vector<glm::dvec2>& pts, const std::vector<int>& ring) {
+  const size_t n = ring.size();
+  int best = -1;
+  double bestTurn = -HUGE_VAL;
+  for (size_t i = 0; i < n; ++i) {
+    const int p = ring[(i + n - 1) % n], c = ring[i], q = ring[(i + 1) % n];
+    const double turn = cross2(pts[p], pts[c], pts[q]);
+    if (turn > bestTurn) bestTurn = turn, best = int(i);
+    if (turn <= 0) continue;
+    if (emptyTriangle(pts, ring, p, c, q)) return i;
+  }
+  return size_t(best);
+}
+
 /// Ear clipping of a simple ring given counter-clockwise in 2D: triangles as index triples.
 /// Where rounding leaves no clean ear, the most convex corner is clipped, so it always ends.
 std::vector<std::array<int, 3>> earClip(const std::vector<glm::dvec2>& pts) {
@@ -48,25 +73,7 @@ std::vector<std::array<int, 3>> earClip(const std::vector<glm::dvec2>& pts) {
   if (pts.size() == 4 && cross2(pts[1], pts[2], pts[3]) > 0 && cross2(pts[3], pts[0], pts[1]) > 0)
     return {{1, 2, 3}, {1, 3, 0}};
   while (ring.size() > 3) {
-    const size_t n = ring.size();
-    int best = -1;
-    double bestTurn = -HUGE_VAL;
-    for (size_t i = 0; i < n; ++i) {
-      const int p = ring[(i + n - 1) % n], c = ring[i], q = ring[(i + 1) % n];
-      const double turn = cross2(pts[p], pts[c], pts[q]);
-      if (turn > bestTurn) bestTurn = turn, best = int(i);
-      if (turn <= 0) continue;
-      bool empty = true;
-      for (size_t j = 0; j < n && empty; ++j) {
-        const int k = ring[j];
-        if (k != p && k != c && k != q) empty = !insideTriangle(pts[k], pts[p], pts[c], pts[q]);
-      }
-      if (empty) {
-        best = int(i);
-        break;
-      }
-    }
-    const size_t i = size_t(best);
+    const size_t n = ring.size(), i = nextEar(pts, ring);
     out.push_back({ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]});
     ring.erase(ring.begin() + long(i));
   }
@@ -99,6 +106,26 @@ void holeFilter(const RTCFilterFunctionNArguments* args) {
     const double u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
     if (data->scene->inHole(t, (1 - u - v) * tri.a + u * tri.b + v * tri.c)) args->valid[i] = 0;
   }
+}
+
+/// An Embree triangle geometry of triangles[global[i]], three vertices of its own each.
+RTCGeometry triangleGeometry(RTCDevice device, const std::vector<TraceTriangle>& triangles,
+                             const std::vector<int>& global) {
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t n = global.size();
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                            RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+  for (size_t i = 0; i < n; ++i) {
+    const TraceTriangle& tri = triangles[size_t(global[i])];
+    const glm::dvec3* corners[3] = {&tri.a, &tri.b, &tri.c};
+    for (int k = 0; k < 3; ++k) {
+      for (int d = 0; d < 3; ++d) vb[9 * i + 3 * size_t(k) + size_t(d)] = float((*corners[k])[d]);
+      ib[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
+    }
+  }
+  return geometry;
 }
 
 RTCRay makeRay(const glm::dvec3& o, const glm::dvec3& d, double tFar) {
@@ -175,17 +202,7 @@ void TraceScene::addPolygon(const Polygon& polygon, int surface) {
   const glm::dvec3 v = glm::cross(n, u);
   std::vector<glm::dvec2> flat;
   for (const auto& p : ring) flat.push_back({glm::dot(p - ring[0], u), glm::dot(p - ring[0], v)});
-  int holes = -1;
-  if (!polygon.holes.empty()) {
-    HoleSet set{ring[0], u, v, {}};
-    for (const auto& hole : polygon.holes) {
-      std::vector<glm::dvec2> h;
-      for (const auto& q : hole) h.push_back({glm::dot(toLocal(q) - ring[0], u), glm::dot(toLocal(q) - ring[0], v)});
-      set.rings.push_back(std::move(h));
-    }
-    holes = int(holes_.size());
-    holes_.push_back(std::move(set));
-  }
+  const int holes = polygon.holes.empty() ? -1 : addHoles(polygon, ring[0], u, v);
   for (const auto& t : earClip(flat)) {
     TraceTriangle tri{ring[size_t(t[0])], ring[size_t(t[1])], ring[size_t(t[2])], glm::dvec3(0.0), 0, surface, holes};
     const glm::dvec3 c = glm::cross(tri.b - tri.a, tri.c - tri.a);
@@ -194,6 +211,18 @@ void TraceScene::addPolygon(const Polygon& polygon, int surface) {
     tri.normal = c / (2 * tri.area);
     triangles_.push_back(tri);
   }
+}
+
+int TraceScene::addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,
+                         const glm::dvec3& v) {
+  HoleSet set{origin, u, v, {}};
+  for (const auto& hole : polygon.holes) {
+    std::vector<glm::dvec2> h;
+    for (const auto& q : hole) h.push_back({glm::dot(toLocal(q) - origin, u), glm::dot(toLocal(q) - origin, v)});
+    set.rings.push_back(std::move(h));
+  }
+  holes_.push_back(std::move(set));
+  return int(holes_.size()) - 1;
 }
 
 void TraceScene::buildRays() {
@@ -210,20 +239,7 @@ void TraceScene::buildRays() {
   for (unsigned g = 0; g < 2; ++g) {
     const std::vector<int>& global = g ? r.holed.triangles : r.plain;
     if (global.empty()) continue;  // Embree takes no empty buffers
-    RTCGeometry geometry = rtcNewGeometry(r.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    const size_t n = global.size();
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                           RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
-                                                              RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-    for (size_t i = 0; i < n; ++i) {
-      const TraceTriangle& tri = triangles_[size_t(global[i])];
-      const glm::dvec3* corners[3] = {&tri.a, &tri.b, &tri.c};
-      for (int k = 0; k < 3; ++k) {
-        for (int d = 0; d < 3; ++d) vb[9 * i + 3 * size_t(k) + size_t(d)] = float((*corners[k])[d]);
-        ib[3 * i + size_t(k)] = unsigned(3 * i + size_t(k));
-      }
-    }
+    RTCGeometry geometry = triangleGeometry(r.device, triangles_, global);
     if (g == 1) {
       rtcSetGeometryUserData(geometry, &r.holed);
       rtcSetGeometryIntersectFilterFunction(geometry, holeFilter);

@@ -85,7 +85,11 @@ class TraceScene {
   };
 
  private:
+  /// Triangulates one polygon (normalised coordinates) into triangles_.
   void addPolygon(const Polygon& polygon, int surface);
+  /// Adds the polygon's holes in its plane frame (origin, u, v) to holes_; returns their index.
+  int addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,
+               const glm::dvec3& v);
   void buildRays();
 
   const Scene& scene_;
