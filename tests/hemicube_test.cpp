@@ -136,10 +136,8 @@ struct Target {
   double errorTimesR;  ///< allowed mean |relative error| × R
 };
 
-class HemicubeAccuracyTest : public ::testing::TestWithParam<int> {};
-
-TEST_P(HemicubeAccuracyTest, MeanErrorWithinOneOverR) {
-  const int R = GetParam();
+/// The polygons of oracles.md §1 and a few more, each with its allowed mean |error| × R.
+std::vector<Target> accuracyTargets() {
   // A non-convex L-shape in a tilted plane, facing the point.
   Polygon3 tilted;
   glm::dvec3 o(-0.3, -0.2, 1.0), e1 = glm::normalize(glm::dvec3(1, 0, 0.3)),
@@ -147,7 +145,7 @@ TEST_P(HemicubeAccuracyTest, MeanErrorWithinOneOverR) {
   for (auto [x, y] : std::vector<std::pair<double, double>>{
            {0, 0}, {0, 1}, {0.4, 1}, {0.4, 0.4}, {1, 0.4}, {1, 0}})
     tilted.push_back(o + x * e1 + y * e2);
-  const std::vector<Target> targets = {
+  return {
       {"corner rectangle 1x1 at 1", cornerRectangle(1, 1, 1), 1.0},
       {"corner rectangle 0.5x0.5 at 1", cornerRectangle(0.5, 0.5, 1), 1.0},
       {"corner rectangle 2x1 at 1", cornerRectangle(2, 1, 1), 1.0},
@@ -161,7 +159,13 @@ TEST_P(HemicubeAccuracyTest, MeanErrorWithinOneOverR) {
       {"tilted non-convex L-shape", tilted, 1.0},
       {"unit square centred at 1", {{-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}}, 0.1},
   };
-  for (const auto& t : targets) {
+}
+
+class HemicubeAccuracyTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(HemicubeAccuracyTest, MeanErrorWithinOneOverR) {
+  const int R = GetParam();
+  for (const auto& t : accuracyTargets()) {
     ErrorStats s = hemicubeError(t.polygon, R);
     EXPECT_LE(s.meanAbs, t.errorTimesR / R)
         << t.name << " at R = " << R << ": mean |error| " << s.meanAbs << ", bias " << s.bias;

@@ -92,6 +92,25 @@ TEST(ReferenceTest, FurnaceIsExactAtEveryPoint) {
   EXPECT_LE(beyond, 2);
 }
 
+/// The scene's emitter: its emission E and the outline of its first polygon.
+glm::dvec3 emitterOf(const Scene& scene, std::vector<glm::dvec3>& outline) {
+  glm::dvec3 E(0.0);
+  for (const auto& s : scene.surfaces) {
+    const Material& m = scene.materials[size_t(s.material)];
+    if (m.emits()) E = m.emission, outline = s.polygons[0].outer;
+  }
+  return E;
+}
+
+/// Gives `surface` a material of its own reflecting rho.
+void makeReceiver(Scene& scene, int surface, const glm::dvec3& rho) {
+  Material receiver;
+  receiver.name = "receiver";
+  receiver.reflectance = rho;
+  scene.materials.push_back(receiver);
+  scene.surfaces[size_t(surface)].material = int(scene.materials.size() - 1);
+}
+
 /// The empty Cornell box with every reflectance 0 but the receivers': B = ρ·E·F, F the exact
 /// unoccluded factor from the point to the light (cornell_box.md lists four on the floor).
 TEST(ReferenceTest, DirectLightIsRhoEF) {
@@ -106,23 +125,15 @@ TEST(ReferenceTest, DirectLightIsRhoEF) {
   for (const auto& c : cases) {
     // Only the receiving surface reflects: nothing else brings light.
     Scene scene = empty;
-    glm::dvec3 E(0.0);
     std::vector<glm::dvec3> light;
-    for (auto& s : scene.surfaces) {
-      Material& m = scene.materials[size_t(s.material)];
-      if (m.emits()) E = m.emission, light = s.polygons[0].outer;
-    }
+    const glm::dvec3 E = emitterOf(scene, light);
     const TraceScene traced(scene);
     SurfacePoint q{c.p, c.n, -1, ""};
     if (!locatePoint(traced, q, 1e-6 * traced.size())) {
       EXPECT_EQ(c.p.y, 0.5);  // (278, 0.5, 279.5) lies on no surface
       continue;
     }
-    Material receiver;
-    receiver.name = "receiver";
-    receiver.reflectance = rho;
-    scene.materials.push_back(receiver);
-    scene.surfaces[size_t(q.surface)].material = int(scene.materials.size() - 1);
+    makeReceiver(scene, q.surface, rho);
     const double F = c.F >= 0 ? c.F : pointPolygonFormFactor(c.p, c.n, light);
     EXPECT_NEAR(F, pointPolygonFormFactor(c.p, c.n, light), 1e-6);
     TraceOptions options;
@@ -231,20 +242,20 @@ TEST(ReferenceTest, PlacesPointsOnVisibleSurfaces) {
 namespace rad {
 namespace {
 
-/// `solve --reference` on the furnace, whose exact answer (B = 2 everywhere at ρ = 0.5) is
-/// known: the true error measured against a path-traced reference agrees with the error
-/// against the exact answer to within the reference's own noise.
-TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
-  const Scene furnace = loadScene(std::string(RAD_SOURCE_DIR) + "/scenes/furnace.json");
+/// The furnace's coarse test settings.
+Settings furnaceSettings(const Scene& furnace) {
   SolverBlock flags;
   flags.maxElementEdge = 0.125;
   flags.maxPatchEdge = 0.5;
   flags.tolerance = 1e-3;
   flags.emitterSamples = 4;
   flags.hemicubeResolution = flags.emitterHemicubeResolution = 64;
-  const Settings settings = resolveSettings(furnace, flags);
-  const MeshedScene m = meshScene(furnace, settings);
-  HemicubeFactors factors(m.mesh, settings.hemicubeResolution, furnace.diagonal(), settings.seed, 0,
+  return resolveSettings(furnace, flags);
+}
+
+/// The meshed scene solved progressively: what Gouraud shading shows at each vertex.
+std::vector<glm::dvec3> solvedAndShown(const MeshedScene& m, const Scene& scene, const Settings& settings) {
+  HemicubeFactors factors(m.mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
                           settings.emitterHemicubeResolution);
   SolverOptions options;
   options.tolerance = settings.tolerance;
@@ -253,11 +264,12 @@ TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
   while (solver.step()) {}
   std::unique_ptr<VertexDirect> direct;
   if (m.direct) direct.reset(new VertexDirect{solver.direct(), m.direct->radiosity(), m.base.get()});
-  const std::vector<glm::dvec3> shown = vertexRadiosity(m.mesh, solver.radiosity(), direct.get());
+  return vertexRadiosity(m.mesh, solver.radiosity(), direct.get());
+}
 
-  // Points on every face, near edges too; the reference by path tracing, and the truth.
-  const pathtrace::TraceScene traced(furnace);
-  std::vector<pathtrace::SurfacePoint> points;
+/// Points on every face of the furnace, near edges too, located on their surface.
+void furnacePoints(const Scene& furnace, const pathtrace::TraceScene& traced,
+                   std::vector<pathtrace::SurfacePoint>& points) {
   for (const auto& s : furnace.surfaces) {
     const auto& r = s.polygons[0].outer;
     const glm::dvec3 n = glm::normalize(glm::cross(r[1] - r[0], r[3] - r[0]));
@@ -268,18 +280,37 @@ TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
         points.push_back(q);
       }
   }
+}
+
+/// The points with their estimates, as a reference file holds them.
+std::vector<ReferencePoint> asReference(const Scene& scene, const std::vector<pathtrace::SurfacePoint>& points,
+                                        const std::vector<pathtrace::PointEstimate>& estimates) {
+  std::vector<ReferencePoint> out;
+  for (size_t i = 0; i < points.size(); ++i)
+    out.push_back({points[i].position, points[i].normal, scene.surfaces[size_t(points[i].surface)].name,
+                   "", estimates[i].B, estimates[i].standardError, estimates[i].paths});
+  return out;
+}
+
+/// `solve --reference` on the furnace, whose exact answer (B = 2 everywhere at ρ = 0.5) is
+/// known: the true error measured against a path-traced reference agrees with the error
+/// against the exact answer to within the reference's own noise.
+TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
+  const Scene furnace = loadScene(std::string(RAD_SOURCE_DIR) + "/scenes/furnace.json");
+  const Settings settings = furnaceSettings(furnace);
+  const MeshedScene m = meshScene(furnace, settings);
+  const std::vector<glm::dvec3> shown = solvedAndShown(m, furnace, settings);
+
+  // The reference by path tracing, and the truth.
+  const pathtrace::TraceScene traced(furnace);
+  std::vector<pathtrace::SurfacePoint> points;
+  ASSERT_NO_FATAL_FAILURE(furnacePoints(furnace, traced, points));
   pathtrace::TraceOptions trace;
   trace.paths = 8192;
-  const auto estimates = pathtrace::PathTracer(traced).estimate(points, trace);
-  std::vector<ReferencePoint> reference, exact;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const ReferencePoint p{points[i].position, points[i].normal, furnace.surfaces[size_t(points[i].surface)].name,
-                           "", estimates[i].B, estimates[i].standardError, estimates[i].paths};
-    reference.push_back(p);
-    exact.push_back(p);
-    exact.back().B = glm::dvec3(2.0);
-    exact.back().standardError = glm::dvec3(0.0);
-  }
+  const std::vector<ReferencePoint> reference =
+      asReference(furnace, points, pathtrace::PathTracer(traced).estimate(points, trace));
+  std::vector<ReferencePoint> exact = reference;
+  for (ReferencePoint& p : exact) p.B = glm::dvec3(2.0), p.standardError = glm::dvec3(0.0);
   const ErrorSummary measured = TrueError(m.mesh, furnace, reference).measure(shown);
   const ErrorSummary truth = TrueError(m.mesh, furnace, exact).measure(shown);
   EXPECT_EQ(measured.used, 3 * int(points.size()));
