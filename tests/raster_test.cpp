@@ -60,6 +60,19 @@ State countingState() {
   return s;
 }
 
+// Draws m with reversed depth (depth cleared to 0, test GREATER) and the given clip-space depth
+// convention into a new w x h target with an item buffer.
+Target drawReversed(const Mesh& m, int w, int h,
+                    raster::ClipDepth clipDepth = raster::ClipDepth::NegativeOneToOne) {
+  Target t = makeTarget(w, h, false);
+  t.clearDepth(0.0f);
+  State s;
+  s.depthFunc = raster::DepthFunc::Greater;
+  s.clipDepth = clipDepth;
+  draw(t, s, m);
+  return t;
+}
+
 // ---------------------------------------------------------------------------------------------
 
 TEST(Raster, HitsHookCountsOverdraw) {
@@ -646,17 +659,66 @@ void addGrid(Mesh& m, std::mt19937& rng, int w, int h, double spacing, bool snap
     }
 }
 
+// One configuration of FastPathMatchesGenericPathOnFineMeshes.
+struct FineMeshCase {
+  int w, h;
+  double spacing;
+  bool snapped, reversed, cull, scissor;
+};
+
+// The draw state of a case: reversed [0, 1] depth, back-face culling and a scissor rectangle as
+// the case asks.
+State fineMeshState(const FineMeshCase& k) {
+  State s;
+  if (k.reversed) {
+    s.depthFunc = raster::DepthFunc::Greater;
+    s.clipDepth = raster::ClipDepth::ZeroToOne;
+  }
+  if (k.cull) s.cull = Cull::Back;
+  if (k.scissor) {
+    s.scissorTest = true;
+    s.scissor = {7, 5, k.w - 20, k.h - 9};
+  }
+  return s;
+}
+
+// One mesh of `first` then `second` (ids kept).
+Mesh concatenated(const Mesh& first, const Mesh& second) {
+  Mesh both = first;
+  const uint32_t shift = uint32_t(both.clip.size());
+  both.clip.insert(both.clip.end(), second.clip.begin(), second.clip.end());
+  for (uint32_t i : second.idx) both.idx.push_back(i + shift);
+  both.ids.insert(both.ids.end(), second.ids.begin(), second.ids.end());
+  return both;
+}
+
+// A new w x h target with an item buffer (and the hits hook if asked), depth cleared to
+// clearTo, with m drawn into it.
+Target drawnTarget(int w, int h, bool hits, float clearTo, const State& s, const Mesh& m) {
+  Target t = makeTarget(w, h, hits);
+  t.clearDepth(clearTo);
+  draw(t, s, m);
+  return t;
+}
+
+// A single layer drawn without culling: every pixel inside the scissor rectangle (if on) is hit
+// exactly once by the generic path (hits hook) and gets an item from the fast path; no other.
+void expectCoveredOnce(const Target& fast, const Target& generic, const State& s) {
+  for (int y = 0; y < fast.height; ++y)
+    for (int x = 0; x < fast.width; ++x) {
+      const bool inside = !s.scissorTest || (x >= s.scissor.x && x < s.scissor.x + s.scissor.width &&
+                                             y >= s.scissor.y && y < s.scissor.y + s.scissor.height);
+      ASSERT_EQ(generic.hits[generic.index(x, y)], inside ? 1u : 0u) << x << "," << y;
+      ASSERT_EQ(fast.item[fast.index(x, y)] != kNoItem, inside) << x << "," << y;
+    }
+}
+
 // The fast path's setups for small triangles (whole-box coverage with 16-bit coordinates, and
 // rows of chunks) against the generic path on fine meshes: identical items and depths, and a
 // single layer covers every pixel exactly once. Two overlapping layers, both depth
 // conventions, culling, scissor, and target widths that are not multiples of 4 (or below 4).
 TEST(Raster, FastPathMatchesGenericPathOnFineMeshes) {
-  struct Case {
-    int w, h;
-    double spacing;
-    bool snapped, reversed, cull, scissor;
-  };
-  const Case cases[] = {
+  const FineMeshCase cases[] = {
       {101, 67, 0.5, true, true, false, false},   {101, 67, 0.7, false, true, false, false},
       {101, 67, 1.5, true, true, false, false},   {101, 67, 2.3, false, true, false, false},
       {96, 64, 1.0, true, false, false, false},   {96, 64, 1.3, false, false, false, false},
@@ -667,62 +729,35 @@ TEST(Raster, FastPathMatchesGenericPathOnFineMeshes) {
       {3, 9, 0.5, true, true, false, false},      {6, 5, 0.6, false, false, false, false},
       {256, 128, 1.9, false, true, false, false}, {256, 128, 2.0, true, true, false, false}};
   std::mt19937 rng(2024);
-  for (const Case& k : cases) {
+  for (const FineMeshCase& k : cases) {
     SCOPED_TRACE(::testing::Message() << k.w << "x" << k.h << " spacing " << k.spacing
                                       << (k.snapped ? " snapped" : "") << (k.reversed ? " reversed" : "")
                                       << (k.cull ? " cull" : "") << (k.scissor ? " scissor" : ""));
     const float near = k.reversed ? 1e-3f : 0.0f;
-    Mesh layer0, layer1, both;
+    Mesh layer0, layer1;
     // Layer 1 is nearer in both conventions: smaller NDC z, and smaller w (larger near/w).
     addGrid(layer0, rng, k.w, k.h, k.spacing, k.snapped, 0.1, near, 16.0f, 0);
     addGrid(layer1, rng, k.w, k.h, k.spacing * 1.5, k.snapped, -0.2, near, 1.0f,
             uint32_t(layer0.triangles()));
-    both = layer1;
-    const uint32_t shift = uint32_t(both.clip.size());
-    both.clip.insert(both.clip.end(), layer0.clip.begin(), layer0.clip.end());
-    for (uint32_t i : layer0.idx) both.idx.push_back(i + shift);
-    both.ids.insert(both.ids.end(), layer0.ids.begin(), layer0.ids.end());
-
-    State s;
-    if (k.reversed) {
-      s.depthFunc = raster::DepthFunc::Greater;
-      s.clipDepth = raster::ClipDepth::ZeroToOne;
-    }
-    if (k.cull) s.cull = Cull::Back;
-    if (k.scissor) {
-      s.scissorTest = true;
-      s.scissor = {7, 5, k.w - 20, k.h - 9};
-    }
+    Mesh both = concatenated(layer1, layer0);
+    const State s = fineMeshState(k);
     const float clearTo = k.reversed ? 0.0f : 1.0f;
     for (const Mesh* m : {&layer0, &both}) {
-      Target fast = makeTarget(k.w, k.h, false);
-      Target generic = makeTarget(k.w, k.h, true);  // the hits hook forces the generic path
-      fast.clearDepth(clearTo);
-      generic.clearDepth(clearTo);
-      draw(fast, s, *m);
-      draw(generic, s, *m);
+      const Target fast = drawnTarget(k.w, k.h, false, clearTo, s, *m);
+      // The hits hook forces the generic path.
+      const Target generic = drawnTarget(k.w, k.h, true, clearTo, s, *m);
       ASSERT_EQ(fast.item, generic.item);
       ASSERT_EQ(fast.depth, generic.depth);
       if (m == &layer0 && !k.cull) {
-        for (int y = 0; y < k.h; ++y)
-          for (int x = 0; x < k.w; ++x) {
-            const bool inside = !k.scissor || (x >= s.scissor.x && x < s.scissor.x + s.scissor.width &&
-                                               y >= s.scissor.y && y < s.scissor.y + s.scissor.height);
-            ASSERT_EQ(generic.hits[generic.index(x, y)], inside ? 1u : 0u) << x << "," << y;
-            ASSERT_EQ(fast.item[fast.index(x, y)] != kNoItem, inside) << x << "," << y;
-          }
+        expectCoveredOnce(fast, generic, s);
+        if (HasFatalFailure()) return;
       }
     }
     // The nearer layer wins wherever it covers a pixel, whatever the order of submission.
-    Target ab = makeTarget(k.w, k.h, false), ba = makeTarget(k.w, k.h, false);
-    Target near1 = makeTarget(k.w, k.h, false);
-    ab.clearDepth(clearTo);
-    ba.clearDepth(clearTo);
-    near1.clearDepth(clearTo);
-    draw(ab, s, both);
-    draw(ba, s, layer0);
+    const Target ab = drawnTarget(k.w, k.h, false, clearTo, s, both);
+    Target ba = drawnTarget(k.w, k.h, false, clearTo, s, layer0);
     draw(ba, s, layer1);
-    draw(near1, s, layer1);
+    const Target near1 = drawnTarget(k.w, k.h, false, clearTo, s, layer1);
     ASSERT_EQ(ab.item, ba.item);
     ASSERT_EQ(ab.depth, ba.depth);
     for (size_t i = 0; i < ab.item.size(); ++i) {
@@ -746,11 +781,7 @@ TEST(Raster, DepthFuncGreater) {
       m.idx.insert(m.idx.end(), {b, b + 1, b + 2});
       m.ids.push_back(uint32_t(k));
     }
-    Target t = makeTarget(W, H, false);
-    t.clearDepth(0.0f);
-    State s;
-    s.depthFunc = raster::DepthFunc::Greater;
-    draw(t, s, m);
+    const Target t = drawReversed(m, W, H);
     for (size_t i = 0; i < t.item.size(); ++i) {
       ASSERT_EQ(t.item[i], 0u);
       ASSERT_EQ(t.depth[i], 0.75f);
@@ -817,12 +848,7 @@ TEST(Raster, ReversedZeroToOneDepthKeepsRelativePrecision) {
       m.idx.insert(m.idx.end(), {b, b + 1, b + 2});
       m.ids.push_back(uint32_t(k));
     }
-    Target t = makeTarget(W, H, false);
-    t.clearDepth(0.0f);
-    State s;
-    s.depthFunc = raster::DepthFunc::Greater;
-    s.clipDepth = raster::ClipDepth::ZeroToOne;
-    draw(t, s, m);
+    const Target t = drawReversed(m, W, H, raster::ClipDepth::ZeroToOne);
     for (size_t i = 0; i < t.item.size(); ++i) {
       ASSERT_EQ(t.item[i], 0u) << "order " << first;
       ASSERT_NEAR(t.depth[i] / (kNear / dist[0]), 1.0f, 1e-6f);
@@ -834,12 +860,7 @@ TEST(Raster, ReversedZeroToOneDepthKeepsRelativePrecision) {
   m.clip = {{-1, -1, kNear, 1}, {1, -1, kNear, 1}, {0, 1e-5f, kNear, 1e-5f}, {0, 0, kNear, 1}};
   m.idx = {0, 1, 2};
   m.ids = {7};
-  Target t = makeTarget(W, H, false);
-  t.clearDepth(0.0f);
-  State s;
-  s.depthFunc = raster::DepthFunc::Greater;
-  s.clipDepth = raster::ClipDepth::ZeroToOne;
-  draw(t, s, m);
+  const Target t = drawReversed(m, W, H, raster::ClipDepth::ZeroToOne);
   int covered = 0;
   for (auto id : t.item) covered += id == 7u;
   EXPECT_GT(covered, 0);

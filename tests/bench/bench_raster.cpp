@@ -33,45 +33,39 @@ glm::mat4 boxCamera() {
          glm::lookAt(glm::vec3(0.3f, 0.4f, 3.0f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
 }
 
-// Item+depth drawing (clear + draw) of pre-transformed random triangles into 256x256.
-void BM_ItemDepth(benchmark::State& st) {
+// Triangles per second of a benchmark drawing n triangles per iteration.
+benchmark::Counter triangleRate(size_t n) {
+  return benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// Item+depth drawing (clear + draw) of random triangles into 256x256, with the vertex transform
+// timed or done once beforehand.
+void itemDepth(benchmark::State& st, bool timeTransform) {
   const size_t n = size_t(st.range(0));
   std::vector<glm::vec3> pos;
   std::vector<uint32_t> idx;
   randomScene(n, 0.04f, 1, pos, idx);
+  const glm::mat4 mvp = boxCamera();
   std::vector<glm::vec4> clip;
-  raster::transform(boxCamera(), pos, clip);
+  raster::transform(mvp, pos, clip);
   raster::Target target(256, 256);
   const raster::State state;
   for (auto _ : st) {
     target.clearDepth();
     target.clearItem();
+    if (timeTransform) raster::transform(mvp, pos, clip);
     raster::drawTriangles(target, state, clip.data(), clip.size(), idx.data(), n);
     benchmark::DoNotOptimize(target.item.data());
   }
-  st.counters["tri/s"] = benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["tri/s"] = triangleRate(n);
 }
+
+// Item+depth drawing of pre-transformed random small triangles.
+void BM_ItemDepth(benchmark::State& st) { itemDepth(st, false); }
 BENCHMARK(BM_ItemDepth)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 
 // Same including the vertex transform.
-void BM_TransformItemDepth(benchmark::State& st) {
-  const size_t n = size_t(st.range(0));
-  std::vector<glm::vec3> pos;
-  std::vector<uint32_t> idx;
-  randomScene(n, 0.04f, 1, pos, idx);
-  std::vector<glm::vec4> clip;
-  raster::Target target(256, 256);
-  const raster::State state;
-  const glm::mat4 mvp = boxCamera();
-  for (auto _ : st) {
-    target.clearDepth();
-    target.clearItem();
-    raster::transform(mvp, pos, clip);
-    raster::drawTriangles(target, state, clip.data(), clip.size(), idx.data(), n);
-    benchmark::DoNotOptimize(target.item.data());
-  }
-  st.counters["tri/s"] = benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate);
-}
+void BM_TransformItemDepth(benchmark::State& st) { itemDepth(st, true); }
 BENCHMARK(BM_TransformItemDepth)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 
 // Smooth-shaded colour + depth (the generic path), for comparison.
@@ -92,7 +86,7 @@ void BM_SmoothColor(benchmark::State& st) {
                           colors.data());
     benchmark::DoNotOptimize(target.color.data());
   }
-  st.counters["tri/s"] = benchmark::Counter(double(n), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["tri/s"] = triangleRate(n);
 }
 BENCHMARK(BM_SmoothColor)->Arg(10000)->Unit(benchmark::kMicrosecond);
 
@@ -176,7 +170,7 @@ void BM_HemicubeLike(benchmark::State& st) {
   for (auto* f : faces)
     for (uint32_t i : f->item) covered += i != raster::kNoItem;
   st.counters["covered"] = double(covered);
-  st.counters["tri/s"] = benchmark::Counter(double(tris), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["tri/s"] = triangleRate(tris);
 }
 BENCHMARK(BM_HemicubeLike)
     ->Args({10000, 0})
