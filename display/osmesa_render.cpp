@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -129,103 +130,99 @@ void setVec4(GLenum light, GLenum name, const glm::dvec4& v) {
   glLightfv(light, name, f);
 }
 
-/// The scene's light model and lights (GL_LIGHT0...), specified with the view matrix loaded:
-/// OpenGL stores their positions and spot directions in eye coordinates, i.e. fixed in the world.
-void setupLights(const Scene& scene) {
-  const LightModel& lm = scene.lightModel;
+/// glLightModel: the scene's ambient light, local viewer and two-sided lighting.
+void setupLightModel(const LightModel& lm) {
   const GLfloat ambient[4] = {GLfloat(lm.ambient.x), GLfloat(lm.ambient.y), GLfloat(lm.ambient.z),
                               GLfloat(lm.ambient.w)};
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, lm.localViewer ? GL_TRUE : GL_FALSE);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, lm.twoSided ? GL_TRUE : GL_FALSE);
+}
+
+/// One light as OpenGL light `id`: colours, position (w = 0 for directional), attenuation, and
+/// the spot cone (a cutoff of 180 degrees for the others).
+void setupLight(GLenum id, const Light& l) {
+  glEnable(id);
+  setVec4(id, GL_AMBIENT, l.ambient);
+  setVec4(id, GL_DIFFUSE, l.diffuse);
+  setVec4(id, GL_SPECULAR, l.specular);
+  if (l.type == Light::Type::Directional)
+    setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
+  else
+    setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
+  glLightf(id, GL_CONSTANT_ATTENUATION, GLfloat(l.attenuation.x));
+  glLightf(id, GL_LINEAR_ATTENUATION, GLfloat(l.attenuation.y));
+  glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
+  if (l.type == Light::Type::Spot) {
+    const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
+    glLightfv(id, GL_SPOT_DIRECTION, d);
+    glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
+    glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
+  } else {
+    glLightf(id, GL_SPOT_CUTOFF, 180.0f);
+  }
+}
+
+/// The scene's light model and lights (GL_LIGHT0...), specified with the view matrix loaded:
+/// OpenGL stores their positions and spot directions in eye coordinates, i.e. fixed in the world.
+void setupLights(const Scene& scene) {
+  setupLightModel(scene.lightModel);
   GLint maxLights = 8;
   glGetIntegerv(GL_MAX_LIGHTS, &maxLights);
   if (int(scene.lights.size()) > maxLights)
     throw std::runtime_error("OpenGL: the scene has " + std::to_string(scene.lights.size()) +
                              " lights, this OpenGL supports " + std::to_string(maxLights));
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
-    const GLenum id = GLenum(GL_LIGHT0 + i);
-    glEnable(id);
-    setVec4(id, GL_AMBIENT, l.ambient);
-    setVec4(id, GL_DIFFUSE, l.diffuse);
-    setVec4(id, GL_SPECULAR, l.specular);
-    if (l.type == Light::Type::Directional)
-      setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
-    else
-      setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
-    glLightf(id, GL_CONSTANT_ATTENUATION, GLfloat(l.attenuation.x));
-    glLightf(id, GL_LINEAR_ATTENUATION, GLfloat(l.attenuation.y));
-    glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
-    if (l.type == Light::Type::Spot) {
-      const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
-      glLightfv(id, GL_SPOT_DIRECTION, d);
-      glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
-      glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
-    } else {
-      glLightf(id, GL_SPOT_CUTOFF, 180.0f);
-    }
-  }
+  for (size_t i = 0; i < scene.lights.size(); ++i) setupLight(GLenum(GL_LIGHT0 + i), scene.lights[i]);
 }
 
-}  // namespace
+/// The scene's fog, when it has one.
+void setupFog(const std::optional<Fog>& fog) {
+  if (!fog) return;
+  const Fog& f = *fog;
+  glEnable(GL_FOG);
+  glFogi(GL_FOG_MODE, f.mode == Fog::Mode::Linear ? GL_LINEAR
+                      : f.mode == Fog::Mode::Exp  ? GL_EXP
+                                                  : GL_EXP2);
+  const GLfloat c[4] = {GLfloat(f.color.x), GLfloat(f.color.y), GLfloat(f.color.z), GLfloat(f.color.w)};
+  glFogfv(GL_FOG_COLOR, c);
+  glFogf(GL_FOG_START, GLfloat(f.start));
+  glFogf(GL_FOG_END, GLfloat(f.end));
+  glFogf(GL_FOG_DENSITY, GLfloat(f.density));
+  glHint(GL_FOG_HINT, GL_NICEST);
+}
 
-void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
-                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-                       std::vector<uint8_t>& rgb) {
-  const size_t pixels = size_t(width) * height;
-  std::vector<GLubyte> buffer(pixels * 4);
-  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
+/// Every material of the local model: ambient, diffuse, specular, emission and shininess.
+void setLocalMaterial(const LocalBatch& b) {
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(b.ambient));
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(b.diffuse));
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
+  glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, glm::value_ptr(b.emission));
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
+}
 
-  setupLights(scene);
-  glEnable(GL_LIGHTING);
-  glEnable(GL_NORMALIZE);
-  glDisable(GL_COLOR_MATERIAL);
-  if (scene.fog) {
-    const Fog& f = *scene.fog;
-    glEnable(GL_FOG);
-    glFogi(GL_FOG_MODE, f.mode == Fog::Mode::Linear ? GL_LINEAR
-                        : f.mode == Fog::Mode::Exp  ? GL_EXP
-                                                    : GL_EXP2);
-    const GLfloat c[4] = {GLfloat(f.color.x), GLfloat(f.color.y), GLfloat(f.color.z), GLfloat(f.color.w)};
-    glFogfv(GL_FOG_COLOR, c);
-    glFogf(GL_FOG_START, GLfloat(f.start));
-    glFogf(GL_FOG_END, GLfloat(f.end));
-    glFogf(GL_FOG_DENSITY, GLfloat(f.density));
-    glHint(GL_FOG_HINT, GL_NICEST);
-  }
+/// The hybrid model's materials: specular colour and shininess only.
+void setSpecularMaterial(const LocalBatch& b) {
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
+}
 
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_NORMAL_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
-  glNormalPointer(GL_FLOAT, 0, list.normals.data());
+/// Draws each batch of the `vertexCount` vertices with its material (`setMaterial`), the
+/// wireframe over them when asked, and finishes the frame.
+void drawBatches(const std::vector<LocalBatch>& batches, size_t vertexCount, bool wireframe,
+                 void (*setMaterial)(const LocalBatch&)) {
   if (wireframe) pushFilledBack();
-  for (const LocalBatch& b : list.batches) {
-    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(b.ambient));
-    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(b.diffuse));
-    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
-    glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, glm::value_ptr(b.emission));
-    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
+  for (const LocalBatch& b : batches) {
+    setMaterial(b);
     glDrawArrays(GL_TRIANGLES, b.first, b.count);
   }
-  if (wireframe) drawWireOverlay(GLsizei(list.positions.size()));
+  if (wireframe) drawWireOverlay(GLsizei(vertexCount));
   finish();
-  rgb.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
 }
 
-void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
-                        const glm::mat4& view, int width, int height, Shading shade,
-                        bool wireframe, std::vector<uint8_t>& rgb) {
-  const size_t pixels = size_t(width) * height;
-  std::vector<GLubyte> buffer(pixels * 4);
-  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
-  setupLights(scene);
-  // Diffuse and ambient come from radiosity: the material's are zero and the vertex colour is
-  // the emission; lighting adds only the specular term, summed after as a separate colour.
+/// Lighting for the hybrid model. Diffuse and ambient come from radiosity: the material's are
+/// zero and the vertex colour is the emission; lighting adds only the specular term, summed
+/// after as a separate colour.
+void setupSpecularOnly() {
   glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SEPARATE_SPECULAR_COLOR);
   glEnable(GL_LIGHTING);
   glEnable(GL_NORMALIZE);
@@ -234,6 +231,55 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
   glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, zero);
   glColorMaterial(GL_FRONT_AND_BACK, GL_EMISSION);
   glEnable(GL_COLOR_MATERIAL);
+}
+
+/// The radiance colours scaled by `scale` into [0, 1], where glColor values are clamped.
+std::vector<glm::vec4> scaledColours(const std::vector<glm::vec4>& radiance, float scale) {
+  std::vector<glm::vec4> scaled(radiance.size());
+  for (size_t i = 0; i < scaled.size(); ++i)
+    scaled[i] = glm::vec4(glm::min(glm::vec3(radiance[i]) * scale, glm::vec3(1.0f)), 1.0f);
+  return scaled;
+}
+
+/// The RGB part of an RGBA picture.
+std::vector<uint8_t> rgbOf(const std::vector<GLubyte>& rgba) {
+  std::vector<uint8_t> rgb(rgba.size() / 4 * 3);
+  for (size_t p = 0; p < rgba.size() / 4; ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = rgba[p * 4 + c];
+  return rgb;
+}
+
+}  // namespace
+
+void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
+                       const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
+                       std::vector<uint8_t>& rgb) {
+  std::vector<GLubyte> buffer(size_t(width) * height * 4);
+  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
+  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
+
+  setupLights(scene);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);
+  glDisable(GL_COLOR_MATERIAL);
+  setupFog(scene.fog);
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
+  glNormalPointer(GL_FLOAT, 0, list.normals.data());
+  drawBatches(list.batches, list.positions.size(), wireframe, setLocalMaterial);
+  rgb = rgbOf(buffer);
+}
+
+void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
+                        const glm::mat4& view, int width, int height, Shading shade,
+                        bool wireframe, std::vector<uint8_t>& rgb) {
+  std::vector<GLubyte> buffer(size_t(width) * height * 4);
+  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
+  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
+  setupLights(scene);
+  setupSpecularOnly();
 
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
@@ -241,17 +287,8 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
   glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
   glNormalPointer(GL_FLOAT, 0, list.normals.data());
   glColorPointer(4, GL_FLOAT, 0, list.colours.data());
-  if (wireframe) pushFilledBack();
-  for (const LocalBatch& b : list.batches) {
-    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(b.specular));
-    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
-    glDrawArrays(GL_TRIANGLES, b.first, b.count);
-  }
-  if (wireframe) drawWireOverlay(GLsizei(list.positions.size()));
-  finish();
-  rgb.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
+  drawBatches(list.batches, list.positions.size(), wireframe, setSpecularMaterial);
+  rgb = rgbOf(buffer);
 }
 
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view, int width,
@@ -262,9 +299,7 @@ void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::
     std::vector<GLubyte> buffer(pixels * 4);
     drawPass(list, list.display, projection, view, width, height, shade, wireframe, GL_UNSIGNED_BYTE,
              buffer.data(), cullBack);
-    rgb.resize(pixels * 3);
-    for (size_t p = 0; p < pixels; ++p)
-      for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = buffer[p * 4 + c];
+    rgb = rgbOf(buffer);
   }
   if (!radiance) return;
   // Radiance through a float colour buffer. glColor values are clamped to [0, 1] on the way in,
@@ -272,12 +307,9 @@ void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::
   float peak = 0;
   for (const auto& c : list.radiance) peak = std::max({peak, c.r, c.g, c.b});
   const float scale = peak > 0 ? 1.0f / peak : 1.0f;
-  std::vector<glm::vec4> scaled(list.radiance.size());
-  for (size_t i = 0; i < scaled.size(); ++i)
-    scaled[i] = glm::vec4(glm::min(glm::vec3(list.radiance[i]) * scale, glm::vec3(1.0f)), 1.0f);
   std::vector<GLfloat> buffer(pixels * 4);
-  drawPass(list, scaled, projection, view, width, height, shade, /*wireframe=*/false, GL_FLOAT,
-           buffer.data(), cullBack);
+  drawPass(list, scaledColours(list.radiance, scale), projection, view, width, height, shade,
+           /*wireframe=*/false, GL_FLOAT, buffer.data(), cullBack);
   radiance->resize(pixels * 3);
   for (size_t p = 0; p < pixels; ++p)
     for (int c = 0; c < 3; ++c) (*radiance)[p * 3 + c] = buffer[p * 4 + c] / scale;

@@ -13,142 +13,199 @@
 #include "mesh/error.h"
 #include "mesh/output_file.h"
 
-int main(int argc, char** argv) {
-  using namespace rad::viewer;
-  CLI::App app{
-      "radview: draw a radiosity result (the PLY of `radiosity solve`) offscreen into a PNG.\n"
-      "Display colour: sRGB(clamp(K*B)), B the vertex radiosity (smooth) or the element's own "
-      "(flat).\n"
-      "--mode local draws --scene SCENE.json lit by OpenGL's fixed-function model (its lights, "
-      "light_model, materials, fog) through OSMesa only.\n"
-      "--mode hybrid draws RESULT.ply's radiosity as the diffuse part plus the specular highlights "
-      "of --scene SCENE.json's lights and materials (OSMesa only)."};
+namespace {
+
+using namespace rad::viewer;
+
+/// The command line as given.
+struct Args {
   std::string input, output, hdr, shade = "smooth", backend = "osmesa", camera, mode = "radiosity",
       scenePath, cull = "none";
-  RenderOptions o;
   double exposure = 0;
-  app.add_option("result", input, "Result PLY written by `radiosity solve` (--mode radiosity)");
-  app.add_option("--mode", mode,
+  bool ladder = false;
+  RenderOptions o;
+  CLI::Option* exposureOption = nullptr;
+  CLI::Option* cullOption = nullptr;
+};
+
+/// The options that say what is drawn and where it goes: the result, the mode, the scene, the
+/// picture.
+void addInputOptions(CLI::App& app, Args& a) {
+  app.add_option("result", a.input, "Result PLY written by `radiosity solve` (--mode radiosity)");
+  app.add_option("--mode", a.mode,
                  "radiosity: draw RESULT.ply (default); local: draw --scene with OpenGL lighting "
                  "(OSMesa only: not with --backend software, --exposure or --hdr); hybrid: "
                  "RESULT.ply's radiosity plus --scene's specular highlights (OSMesa only, no --hdr)")
       ->check(CLI::IsMember({"radiosity", "local", "hybrid"}));
-  app.add_option("--scene", scenePath,
+  app.add_option("--scene", a.scenePath,
                  "Scene JSON with `lights`, for --mode local, --mode hybrid and --ladder (for the last "
                  "two, the scene RESULT.ply was solved from)");
-  app.add_option("-o,--output", output, "PNG image to write")->required();
-  app.add_option("--width", o.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 16384));
-  app.add_option("--height", o.height, "Image height in pixels (default 512)")->check(CLI::Range(1, 16384));
-  app.add_option("--shade", shade,
+  app.add_option("-o,--output", a.output, "PNG image to write")->required();
+}
+
+/// The options that say how it is drawn: size, shading, backend, exposure, culling, camera.
+void addDrawingOptions(CLI::App& app, Args& a) {
+  app.add_option("--width", a.o.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 16384));
+  app.add_option("--height", a.o.height, "Image height in pixels (default 512)")->check(CLI::Range(1, 16384));
+  app.add_option("--shade", a.shade,
                  "smooth: Gouraud on vertex radiosity (default); flat: each element's own value "
                  "(--mode local: vertex normals, or face normals with GL_FLAT)")
       ->check(CLI::IsMember({"smooth", "flat"}));
-  app.add_option("--backend", backend,
+  app.add_option("--backend", a.backend,
                  "osmesa: OpenGL through OSMesa (default); software: the raster core, same picture "
                  "(radiosity mode only)")
       ->check(CLI::IsMember({"osmesa", "software"}));
-  auto* exposureOption =
-      app.add_option("--exposure", exposure, "Exposure K (default: the file's `exposure` comment)")
-          ->check(CLI::PositiveNumber);
-  auto* cullOption =
-      app.add_option("--cull", cull,
-                     "none: draw every face (default); back: remove back faces, clockwise on "
-                     "screen (GL_CULL_FACE with GL_BACK, CCW front faces; both backends; radiosity "
-                     "mode only)")
-          ->check(CLI::IsMember({"none", "back"}));
-  app.add_flag("--wireframe", o.wireframe, "Overlay the element edges in a dark colour (both backends)");
-  app.add_option("--camera", camera,
+  a.exposureOption = app.add_option("--exposure", a.exposure, "Exposure K (default: the file's `exposure` comment)")
+                         ->check(CLI::PositiveNumber);
+  a.cullOption = app.add_option("--cull", a.cull,
+                                "none: draw every face (default); back: remove back faces, clockwise on "
+                                "screen (GL_CULL_FACE with GL_BACK, CCW front faces; both backends; radiosity "
+                                "mode only)")
+                     ->check(CLI::IsMember({"none", "back"}));
+  app.add_flag("--wireframe", a.o.wireframe, "Overlay the element edges in a dark colour (both backends)");
+  app.add_option("--camera", a.camera,
                  "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F as gluLookAt/gluPerspective, fov vertical "
                  "in degrees; any subset overrides the file's `camera` comment");
-  app.add_option("--ssaa", o.ssaa, "Supersampling: render K times larger, box filter in linear light")
+  app.add_option("--ssaa", a.o.ssaa, "Supersampling: render K times larger, box filter in linear light")
       ->check(CLI::Range(1, 16));
-  bool ladder = false;
-  app.add_flag("--ladder", ladder,
+}
+
+/// The other pictures: the realism ladder instead, the radiance beside.
+void addOtherPictureOptions(CLI::App& app, Args& a) {
+  app.add_flag("--ladder", a.ladder,
                "Write the realism ladder of RESULT.ply and --scene SCENE.json as one 4x2 grid of "
                "WxH tiles: wireframe, hidden surfaces removed, flat local, smooth local, smooth "
                "local with specular, radiosity flat, radiosity Gouraud (OSMesa; not with "
                "--wireframe or --hdr)");
-  app.add_option("--hdr", hdr, "Also write the linear radiance B/pi as Radiance HDR (.hdr)");
-  try {
-    app.parse(argc, argv);
-    if (*cullOption && (ladder || mode != "radiosity"))
-      throw CLI::ValidationError("--cull", "is radiosity-only, not for --mode local, --mode hybrid or --ladder");
-    if (ladder) {
-      if (mode != "radiosity") throw CLI::ValidationError("--ladder", "draws every mode itself: no --mode");
-      if (input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required with --ladder");
-      if (scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --ladder");
-      if (backend == "software")
-        throw CLI::ValidationError("--backend", "--ladder needs OpenGL: use --backend osmesa");
-      if (o.wireframe) throw CLI::ValidationError("--wireframe", "not with --ladder (it has its own tile)");
-      if (!hdr.empty()) throw CLI::ValidationError("--hdr", "not with --ladder");
-    } else if (mode == "radiosity") {
-      if (input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required (--mode radiosity)");
-      if (!scenePath.empty())
-        throw CLI::ValidationError("--scene", "belongs to --mode local, --mode hybrid or --ladder; --mode radiosity takes RESULT.ply");
-    } else if (mode == "hybrid") {
-      if (input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required (--mode hybrid)");
-      if (scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode hybrid");
-      if (backend == "software")
-        throw CLI::ValidationError("--backend", "--mode hybrid is OpenGL-only: use --backend osmesa");
-      if (!hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode hybrid");
-    } else {
-      if (scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode local");
-      if (!input.empty())
-        throw CLI::ValidationError("result", "--mode local takes --scene SCENE.json, not a result PLY");
-      if (backend == "software")
-        throw CLI::ValidationError("--backend", "--mode local is OpenGL-only: use --backend osmesa");
-      if (*exposureOption) throw CLI::ValidationError("--exposure", "is radiosity-only, not for --mode local");
-      if (!hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode local");
-    }
-    if (int64_t(o.width) * o.ssaa > 16384 || int64_t(o.height) * o.ssaa > 16384)
-      throw CLI::ValidationError("--ssaa", "width and height times --ssaa must be at most 16384");
-  } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);  // prints help, or the usage error
-    return code == 0 ? 0 : 2;
+  app.add_option("--hdr", a.hdr, "Also write the linear radiance B/pi as Radiance HDR (.hdr)");
+}
+
+/// Usage checks of --ladder.
+void checkLadderArgs(const Args& a) {
+  if (a.mode != "radiosity") throw CLI::ValidationError("--ladder", "draws every mode itself: no --mode");
+  if (a.input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required with --ladder");
+  if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --ladder");
+  if (a.backend == "software")
+    throw CLI::ValidationError("--backend", "--ladder needs OpenGL: use --backend osmesa");
+  if (a.o.wireframe) throw CLI::ValidationError("--wireframe", "not with --ladder (it has its own tile)");
+  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "not with --ladder");
+}
+
+/// Usage checks of --mode radiosity.
+void checkRadiosityArgs(const Args& a) {
+  if (a.input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required (--mode radiosity)");
+  if (!a.scenePath.empty())
+    throw CLI::ValidationError("--scene", "belongs to --mode local, --mode hybrid or --ladder; --mode radiosity takes RESULT.ply");
+}
+
+/// Usage checks of --mode hybrid.
+void checkHybridArgs(const Args& a) {
+  if (a.input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required (--mode hybrid)");
+  if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode hybrid");
+  if (a.backend == "software")
+    throw CLI::ValidationError("--backend", "--mode hybrid is OpenGL-only: use --backend osmesa");
+  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode hybrid");
+}
+
+/// Usage checks of --mode local.
+void checkLocalArgs(const Args& a) {
+  if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode local");
+  if (!a.input.empty())
+    throw CLI::ValidationError("result", "--mode local takes --scene SCENE.json, not a result PLY");
+  if (a.backend == "software")
+    throw CLI::ValidationError("--backend", "--mode local is OpenGL-only: use --backend osmesa");
+  if (*a.exposureOption) throw CLI::ValidationError("--exposure", "is radiosity-only, not for --mode local");
+  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode local");
+}
+
+/// The usage checks after parsing: which options go with which mode. Throws CLI::ValidationError.
+void checkArgs(const Args& a) {
+  if (*a.cullOption && (a.ladder || a.mode != "radiosity"))
+    throw CLI::ValidationError("--cull", "is radiosity-only, not for --mode local, --mode hybrid or --ladder");
+  if (a.ladder) checkLadderArgs(a);
+  else if (a.mode == "radiosity") checkRadiosityArgs(a);
+  else if (a.mode == "hybrid") checkHybridArgs(a);
+  else checkLocalArgs(a);
+  if (int64_t(a.o.width) * a.o.ssaa > 16384 || int64_t(a.o.height) * a.o.ssaa > 16384)
+    throw CLI::ValidationError("--ssaa", "width and height times --ssaa must be at most 16384");
+}
+
+/// The render options the arguments give.
+RenderOptions renderOptions(const Args& a) {
+  RenderOptions o = a.o;
+  o.shade = a.shade == "flat" ? Shading::Flat : Shading::Smooth;
+  o.backend = a.backend == "software" ? Backend::Software : Backend::OsMesa;
+  if (*a.exposureOption) o.exposure = a.exposure;
+  o.radiance = !a.hdr.empty();
+  o.cullBack = a.cull == "back";
+  return o;
+}
+
+/// Prints the repairs the scene loader made.
+void printWarnings(const rad::Scene& scene) {
+  for (const auto& w : scene.warnings) std::cerr << "radview: warning: " << w << "\n";
+}
+
+/// A render and the seconds it took (loading not counted).
+struct Rendered {
+  Image image;
+  double seconds = 0;
+};
+
+/// Times `draw` (a callable returning the Image).
+template <class Draw>
+Rendered timed(Draw draw) {
+  const auto start = std::chrono::steady_clock::now();
+  Rendered r;
+  r.image = draw();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+/// Loads the inputs of the chosen mode, applies --camera over the view they give, and renders.
+Rendered renderRequested(const Args& a, RenderOptions o) {
+  if (a.mode == "local") {
+    const LocalScene local = loadLocalScene(a.scenePath);
+    printWarnings(local.scene);
+    if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(local, RenderOptions{}));
+    return timed([&] { return renderLocal(local, o); });
   }
-  o.shade = shade == "flat" ? Shading::Flat : Shading::Smooth;
-  o.backend = backend == "software" ? Backend::Software : Backend::OsMesa;
-  if (*exposureOption) o.exposure = exposure;
-  o.radiance = !hdr.empty();
-  o.cullBack = cull == "back";
+  const rad::ResultFile mesh = rad::readResultFile(a.input);
+  rad::Scene scene;
+  if (a.ladder || a.mode == "hybrid") {
+    scene = rad::loadScene(a.scenePath);
+    printWarnings(scene);
+  }
+  if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(mesh, RenderOptions{}));
+  if (a.ladder) return timed([&] { return renderLadder(mesh, scene, o); });
+  if (a.mode == "hybrid") return timed([&] { return renderHybrid(mesh, scene, o); });
+  return timed([&] { return render(mesh, o); });
+}
+
+/// Writes the pictures and says what was drawn, how, in how long, and where it went.
+void writeAndReport(const Args& a, const RenderOptions& o, const Rendered& r) {
+  writePng(a.output, r.image);
+  if (!a.hdr.empty()) writeHdr(a.hdr, r.image);
+  const char* what = a.mode == "local" ? "local lighting, " : a.mode == "hybrid" ? "hybrid, " : "";
+  char line[256];
+  std::snprintf(line, sizeof line, "radview: rendered %dx%d (%s%s%s, %s shading, ssaa %d) in %.3f s; wrote ",
+                r.image.width, r.image.height, a.ladder ? "ladder, " : "", what, a.backend.c_str(),
+                a.shade.c_str(), o.ssaa, r.seconds);
+  std::cerr << line << a.output << (a.hdr.empty() ? "" : " and " + a.hdr) << "\n";
+}
+
+/// Checks the output paths, renders and writes; errors are thrown.
+void run(const Args& a) {
+  const RenderOptions o = renderOptions(a);
+  rad::checkOutputPath(a.output);
+  if (!a.hdr.empty()) rad::checkOutputPath(a.hdr);
+  writeAndReport(a, o, renderRequested(a, o));
+}
+
+/// Runs, printing any error as "radview: error: ..."; the exit code.
+int runReportingErrors(const Args& a) {
   try {
-    rad::checkOutputPath(output);
-    if (!hdr.empty()) rad::checkOutputPath(hdr);
-    Image image;
-    std::chrono::steady_clock::time_point start;
-    if (ladder) {
-      rad::ResultFile mesh = rad::readResultFile(input);
-      rad::Scene scene = rad::loadScene(scenePath);
-      for (const auto& w : scene.warnings) std::cerr << "radview: warning: " << w << "\n";
-      if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
-      start = std::chrono::steady_clock::now();
-      image = renderLadder(mesh, scene, o);
-    } else if (mode == "local") {
-      LocalScene local = loadLocalScene(scenePath);
-      for (const auto& w : local.scene.warnings) std::cerr << "radview: warning: " << w << "\n";
-      if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(local, RenderOptions{}));
-      start = std::chrono::steady_clock::now();
-      image = renderLocal(local, o);
-    } else if (mode == "hybrid") {
-      rad::ResultFile mesh = rad::readResultFile(input);
-      rad::Scene scene = rad::loadScene(scenePath);
-      for (const auto& w : scene.warnings) std::cerr << "radview: warning: " << w << "\n";
-      if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
-      start = std::chrono::steady_clock::now();
-      image = renderHybrid(mesh, scene, o);
-    } else {
-      rad::ResultFile mesh = rad::readResultFile(input);
-      if (!camera.empty()) o.camera = parseCamera(camera, effectiveCamera(mesh, RenderOptions{}));
-      start = std::chrono::steady_clock::now();
-      image = render(mesh, o);
-    }
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writePng(output, image);
-    if (!hdr.empty()) writeHdr(hdr, image);
-    char line[256];
-    std::snprintf(line, sizeof line, "radview: rendered %dx%d (%s%s%s, %s shading, ssaa %d) in %.3f s; wrote ",
-                  image.width, image.height, ladder ? "ladder, " : "", mode == "local" ? "local lighting, " : mode == "hybrid" ? "hybrid, " : "", backend.c_str(), shade.c_str(), o.ssaa, seconds);
-    std::cerr << line << output << (hdr.empty() ? "" : " and " + hdr) << "\n";
+    run(a);
   } catch (const std::bad_alloc&) {
     std::cerr << "radview: error: out of memory: the picture or the mesh needs more than this machine "
                  "has (lower --width, --height or --ssaa)\n";
@@ -158,4 +215,31 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+const char* const kDescription =
+    "radview: draw a radiosity result (the PLY of `radiosity solve`) offscreen into a PNG.\n"
+    "Display colour: sRGB(clamp(K*B)), B the vertex radiosity (smooth) or the element's own "
+    "(flat).\n"
+    "--mode local draws --scene SCENE.json lit by OpenGL's fixed-function model (its lights, "
+    "light_model, materials, fog) through OSMesa only.\n"
+    "--mode hybrid draws RESULT.ply's radiosity as the diffuse part plus the specular highlights "
+    "of --scene SCENE.json's lights and materials (OSMesa only).";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{kDescription};
+  Args args;
+  addInputOptions(app, args);
+  addDrawingOptions(app, args);
+  addOtherPictureOptions(app, args);
+  try {
+    app.parse(argc, argv);
+    checkArgs(args);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, or the usage error
+    return code == 0 ? 0 : 2;
+  }
+  return runReportingErrors(args);
 }

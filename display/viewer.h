@@ -6,6 +6,12 @@
 // Display colour: the sRGB encoding of clamp(K·B) (mesh/color.h displayByte), B being the
 // vertex radiosity (smooth) or the element's own radiosity (flat), K the exposure.
 // The radiance image (--hdr) is linear B/π per pixel.
+//
+// Where each part lives: render_options.cpp (--camera, the effective camera and exposure, the
+// matrices), radiosity_render.cpp (radiosity mode, both backends, the software wireframe),
+// local_render.cpp (local lighting), hybrid_render.cpp, ladder.cpp (the realism ladder),
+// osmesa_render.cpp (every OpenGL call), downsample.cpp (supersampling), image_file.cpp (PNG and
+// HDR files); the result file itself is mesh/result_file.h.
 #include <array>
 #include <cstdint>
 #include <optional>

@@ -391,23 +391,48 @@ TEST_F(ViewerTest, HybridAddsAHighlightWhereTheMaterialIsSpecular) {
   EXPECT_GT(peak, 60) << "no highlight on the back wall behind the light";
 }
 
+/// Expects draw() to throw an InputError whose message holds every one of `parts`.
+template <class Draw>
+void expectInputError(Draw draw, std::initializer_list<std::string> parts) {
+  try {
+    draw();
+    ADD_FAILURE() << "no error; expected one saying '" << *parts.begin() << "'";
+  } catch (const InputError& e) {
+    for (const std::string& part : parts)
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what() << "\nlacks: " << part;
+  }
+}
+
+/// What hybrid mode and the ladder both refuse, `mode` as their messages name it: the software
+/// backend, the radiance image and a result without the face property `surface`.
+template <class Draw>
+void expectCommonRefusals(Draw draw, const ResultFile& mesh, const std::string& mode) {
+  RenderOptions osmesa;
+  osmesa.width = osmesa.height = 16;
+  RenderOptions software = osmesa, radiance = osmesa;
+  software.backend = Backend::Software;
+  expectInputError([&] { draw(mesh, software); }, {mode + ": expected --backend osmesa", "found --backend software"});
+  radiance.radiance = true;
+  expectInputError([&] { draw(mesh, radiance); }, {mode + ": expected no --hdr", "found --hdr"});
+  ResultFile noSurfaces = mesh;
+  noSurfaces.faceSurface.clear();
+  expectInputError([&] { draw(noSurfaces, osmesa); },
+                   {mesh.path + ": expected a result with the face property `surface` (for " + mode + ")", "found none"});
+}
+
 TEST_F(ViewerTest, HybridRefusesWhatItCannotDraw) {
   const Scene scene = cornellScene();
-  RenderOptions o = options(Backend::Software, Shading::Smooth, 16);
-  EXPECT_THROW(renderHybrid(mesh(), scene, o), InputError);
-  o = options(Backend::OsMesa, Shading::Smooth, 16);
-  o.radiance = true;
-  EXPECT_THROW(renderHybrid(mesh(), scene, o), InputError);
-  o.radiance = false;
-  ResultFile noSurfaces = mesh();
-  noSurfaces.faceSurface.clear();
-  EXPECT_THROW(renderHybrid(noSurfaces, scene, o), InputError);
+  expectCommonRefusals([&](const ResultFile& m, const RenderOptions& o) { renderHybrid(m, scene, o); },
+                       mesh(), "--mode hybrid");
+  const RenderOptions o = options(Backend::OsMesa, Shading::Smooth, 16);
   Scene fewer = scene;
   fewer.surfaces.resize(2);
-  EXPECT_THROW(renderHybrid(mesh(), fewer, o), InputError);
+  expectInputError([&] { renderHybrid(mesh(), fewer, o); },
+                   {mesh().path + ": face ", ": surface: expected a surface index of " + scene.path + " (0..1)"});
   Scene dark = scene;
   dark.lights.clear();
-  EXPECT_THROW(renderHybrid(mesh(), dark, o), InputError);
+  expectInputError([&] { renderHybrid(mesh(), dark, o); },
+                   {scene.path + ": expected a scene with lights for --mode hybrid, found none"});
 }
 
 // ---- The realism ladder -------------------------------------------------------------------------
@@ -453,15 +478,11 @@ TEST_F(ViewerTest, LadderIsAGridOfDistinctTiles) {
 
 TEST_F(ViewerTest, LadderRefusesWhatItCannotDraw) {
   const Scene scene = cornellScene();
-  RenderOptions o = options(Backend::Software, Shading::Smooth, 16);
-  EXPECT_THROW(renderLadder(mesh(), scene, o), InputError);
-  o = options(Backend::OsMesa, Shading::Smooth, 16);
+  expectCommonRefusals([&](const ResultFile& m, const RenderOptions& o) { renderLadder(m, scene, o); },
+                       mesh(), "--ladder");
+  RenderOptions o = options(Backend::OsMesa, Shading::Smooth, 16);
   o.wireframe = true;
-  EXPECT_THROW(renderLadder(mesh(), scene, o), InputError);
-  o.wireframe = false;
-  ResultFile noSurfaces = mesh();
-  noSurfaces.faceSurface.clear();
-  EXPECT_THROW(renderLadder(noSurfaces, scene, o), InputError);
+  expectInputError([&] { renderLadder(mesh(), scene, o); }, {"--ladder: expected no --wireframe", "found --wireframe"});
 }
 
 // ---- Back-face culling (--cull back) -----------------------------------------------------------

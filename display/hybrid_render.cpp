@@ -1,0 +1,87 @@
+// Hybrid mode: the result's radiosity as the diffuse part plus the specular highlights of the
+// scene's lights and materials, through OSMesa.
+#include "display/viewer_internal.h"
+#include "mesh/error.h"
+
+namespace rad::viewer {
+namespace {
+
+/// The batch of a material in the hybrid model: its specular colour and shininess only.
+detail::LocalBatch specularBatch(const Material& m) {
+  detail::LocalBatch b;
+  b.specular = glm::vec4(m.specular);
+  b.shininess = float(m.shininess);
+  return b;
+}
+
+/// The unit normal of face f of the mesh ((0, 0, 1) for a degenerate face).
+glm::vec3 faceNormal(const ResultFile& mesh, size_t f) {
+  const auto& face = mesh.faces[f];
+  const glm::vec3 p0 = mesh.positions[size_t(face[0])], p1 = mesh.positions[size_t(face[1])],
+                  p2 = mesh.positions[size_t(face[2])];
+  const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+  const float len = glm::length(n);
+  return len > 0 ? n / len : glm::vec3(0, 0, 1);
+}
+
+}  // namespace
+
+namespace internal {
+
+void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where) {
+  if (mesh.faceSurface.size() != mesh.faces.size())
+    throw inputError(mesh.path, "a result with the face property `surface` (for " + where + ")", "none");
+  for (size_t f = 0; f < mesh.faceSurface.size(); ++f)
+    if (mesh.faceSurface[f] < 0 || size_t(mesh.faceSurface[f]) >= scene.surfaces.size())
+      throw inputError(mesh.path + ": face " + std::to_string(f) + ": surface",
+                       "a surface index of " + scene.path + " (0.." +
+                           std::to_string(int(scene.surfaces.size()) - 1) + ")",
+                       std::to_string(mesh.faceSurface[f]));
+}
+
+}  // namespace internal
+
+namespace detail {
+
+HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, Shading shade,
+                                   double exposure, bool storedColours) {
+  const DrawList base = buildDrawList(mesh, shade, exposure, storedColours);
+  const auto bySurface = internal::groupBySurface(scene.surfaces.size(), mesh.faces.size(),
+                                                  [&](size_t f) { return mesh.faceSurface[f]; });
+  HybridDrawList list;
+  list.positions.reserve(base.positions.size());
+  list.normals.reserve(base.positions.size());
+  list.colours.reserve(base.positions.size());
+  const bool vertexNormals = shade == Shading::Smooth && !mesh.vertexNormal.empty();
+  internal::appendBatches(list, scene, bySurface, specularBatch, [&](size_t f) {
+    const glm::vec3 normal = faceNormal(mesh, f);
+    for (size_t corner = 0; corner < 3; ++corner) {
+      const size_t k = 3 * f + corner;
+      list.positions.push_back(base.positions[k]);
+      list.colours.push_back(base.display[k]);
+      list.normals.push_back(vertexNormals ? mesh.vertexNormal[size_t(mesh.faces[f][corner])] : normal);
+    }
+  });
+  return list;
+}
+
+}  // namespace detail
+
+Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
+  internal::checkSize(o);
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode hybrid", "--backend osmesa (the hybrid model is OpenGL-only)", "--backend software");
+  if (o.radiance) throw inputError("--mode hybrid", "no --hdr (radiance is radiosity-only)", "--hdr");
+  internal::checkFaceSurfaces(mesh, scene, "--mode hybrid");
+  if (scene.lights.empty()) throw inputError(scene.path, "a scene with lights for --mode hybrid", "none");
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
+  const detail::HybridDrawList list = detail::buildHybridDrawList(
+      mesh, scene, o.shade, effectiveExposure(mesh, o), internal::showsStoredColours(mesh, o));
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaHybrid(list, scene, projection, view, w, h, o.shade, o.wireframe, rgb);
+  return internal::imageOf(rgb, o);
+}
+
+}  // namespace rad::viewer

@@ -1,0 +1,133 @@
+// The realism ladder (radview --ladder): one view of the result drawn seven ways, from the
+// wireframe to radiosity with Gouraud shading, as tiles of one picture.
+#include <algorithm>
+#include <cmath>
+
+#include "display/viewer_internal.h"
+#include "mesh/color.h"
+#include "mesh/error.h"
+
+namespace rad::viewer {
+namespace {
+
+/// Display value of the wireframe tile's lines (light grey on black).
+constexpr float kLadderWireGrey = 224 / 255.0f;
+
+/// Copies a tile (top row first) into the grid at cell `cell`.
+void pasteTile(Image& grid, const Image& tile, int cell) {
+  const int x0 = (cell % kLadderColumns) * tile.width, y0 = (cell / kLadderColumns) * tile.height;
+  for (int y = 0; y < tile.height; ++y)
+    std::copy_n(&tile.rgb[size_t(y) * tile.width * 3], size_t(tile.width) * 3,
+                &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3]);
+}
+
+/// Tile 0: every element edge, no hidden-line removal.
+void drawWireframeTile(raster::Target& target, const std::vector<glm::vec4>& clip, const ResultFile& mesh) {
+  std::vector<uint32_t> edges;
+  edges.reserve(mesh.faces.size() * 6);
+  for (const auto& f : mesh.faces)
+    for (size_t k = 0; k < 3; ++k) {
+      edges.push_back(uint32_t(f[k]));
+      edges.push_back(uint32_t(f[(k + 1) % 3]));
+    }
+  raster::State state;
+  state.depthTest = false;
+  raster::drawLines(target, state, clip.data(), clip.size(), edges.data(), edges.size() / 2,
+                    glm::vec4(glm::vec3(kLadderWireGrey), 1.0f));
+}
+
+/// The constant colour of a surface in tile 1: sRGB of its emission normalised to full
+/// brightness for emitters, else of its reflectance times a brightness varied per surface
+/// (golden-ratio sequence in [0.45, 1]) so that neighbouring surfaces of one material stay apart.
+glm::vec4 surfaceColour(const Scene& scene, int surface) {
+  const Material& m = scene.materials.at(size_t(scene.surfaces[size_t(surface)].material));
+  const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
+  const double shade = 0.45 + 0.55 * (1.0 - std::fmod(surface * 0.6180339887, 1.0));
+  const glm::dvec3 linear = peak > 0 ? m.emission / peak : m.reflectance * shade;
+  return glm::vec4(float(srgbEncode(linear.x)), float(srgbEncode(linear.y)), float(srgbEncode(linear.z)), 1.0f);
+}
+
+/// Tile 1: hidden surfaces removed, de-indexed and flat, each triangle in its surface's colour.
+void drawSurfacesTile(raster::Target& target, const std::vector<glm::vec4>& clip, const ResultFile& mesh,
+                      const Scene& scene) {
+  std::vector<glm::vec4> faceClip, colours;
+  faceClip.reserve(mesh.faces.size() * 3);
+  colours.reserve(mesh.faces.size() * 3);
+  for (size_t t = 0; t < mesh.faces.size(); ++t) {
+    const glm::vec4 colour = surfaceColour(scene, mesh.faceSurface[t]);
+    for (size_t k = 0; k < 3; ++k) {
+      faceClip.push_back(clip[size_t(mesh.faces[t][k])]);
+      colours.push_back(colour);
+    }
+  }
+  raster::State state;
+  state.shade = raster::Shade::Flat;
+  raster::drawTriangles(target, state, faceClip.data(), faceClip.size(), nullptr, faceClip.size() / 3,
+                        nullptr, colours.data());
+}
+
+/// Ladder tiles drawn by the raster core: the wireframe (0) or hidden surfaces removed (1).
+Image softwareTile(const ResultFile& mesh, const Scene& scene, const RenderOptions& o, bool wireframe) {
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h);
+  raster::Target target(w, h, /*withItem=*/false, /*withColor=*/true);
+  target.clearColor(glm::vec4(0, 0, 0, 1));
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, mesh.positions, clip);
+  if (wireframe) drawWireframeTile(target, clip, mesh);
+  else drawSurfacesTile(target, clip, mesh, scene);
+  return internal::imageOf(internal::targetBytes(target), o);
+}
+
+/// The ladder's own limits on the options: OSMesa, no --hdr or --wireframe, a grid that fits.
+void checkLadderOptions(const RenderOptions& options) {
+  internal::checkSize(options);
+  if (options.backend != Backend::OsMesa)
+    throw inputError("--ladder", "--backend osmesa (the local tiles are OpenGL-only)", "--backend software");
+  if (options.radiance) throw inputError("--ladder", "no --hdr", "--hdr");
+  if (options.wireframe) throw inputError("--ladder", "no --wireframe (the ladder has its own)", "--wireframe");
+  if (int64_t(options.width) * kLadderColumns > raster::kMaxSize || options.height * 2 > raster::kMaxSize)
+    throw inputError("--ladder", "a tile size whose grid fits " + std::to_string(raster::kMaxSize) + " pixels",
+                     std::to_string(options.width) + "x" + std::to_string(options.height));
+}
+
+/// Tiles 2 to 4: the scene lit by the local model, flat, smooth, and smooth with specular
+/// (kLadderSpecular and kLadderShininess where a material has no specular colour).
+void pasteLocalTiles(Image& grid, const Scene& scene, const RenderOptions& o) {
+  LocalScene local = prepareLocalScene(scene);
+  RenderOptions lo = o;
+  lo.exposure.reset();
+  lo.shade = Shading::Flat;
+  pasteTile(grid, renderLocal(local, lo), 2);
+  lo.shade = Shading::Smooth;
+  pasteTile(grid, renderLocal(local, lo), 3);
+  for (Material& m : local.scene.materials)
+    if (m.specular.x == 0 && m.specular.y == 0 && m.specular.z == 0) {
+      m.specular = glm::dvec4(glm::dvec3(kLadderSpecular), 1.0);
+      m.shininess = kLadderShininess;
+    }
+  pasteTile(grid, renderLocal(local, lo), 4);
+}
+
+}  // namespace
+
+Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptions& options) {
+  checkLadderOptions(options);
+  internal::checkFaceSurfaces(mesh, scene, "--ladder");
+  RenderOptions o = options;
+  o.camera = effectiveCamera(mesh, options);  // one view for every tile
+  Image grid;
+  grid.width = options.width * kLadderColumns;
+  grid.height = options.height * ((kLadderTiles + kLadderColumns - 1) / kLadderColumns);
+  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 0);
+  pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/true), 0);
+  pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/false), 1);
+  pasteLocalTiles(grid, scene, o);
+  o.shade = Shading::Flat;
+  pasteTile(grid, render(mesh, o), 5);
+  o.shade = Shading::Smooth;
+  pasteTile(grid, render(mesh, o), 6);
+  return grid;
+}
+
+}  // namespace rad::viewer

@@ -1,0 +1,101 @@
+// Local-illumination mode: the scene meshed with its own settings and lit by OpenGL's
+// fixed-function model through OSMesa (its lights, light model, materials and fog).
+#include <algorithm>
+#include <limits>
+
+#include "display/viewer_internal.h"
+#include "mesh/error.h"
+#include "mesh/mesh_settings.h"
+
+namespace rad::viewer {
+namespace {
+
+/// A ResultFile carrying only what camera fitting uses: the bounds and the scene's camera.
+ResultFile boundsOnly(const LocalScene& local) {
+  ResultFile m;
+  m.path = local.scene.path;
+  m.boundsMin = local.boundsMin;
+  m.boundsMax = local.boundsMax;
+  m.camera = local.scene.camera;
+  return m;
+}
+
+/// The batch of a material: its colours, shininess, and its emission normalised to full
+/// brightness, E / max component (lamps show their hue at full brightness; radiosity units have
+/// no fixed display scale).
+detail::LocalBatch localBatch(const Material& m) {
+  detail::LocalBatch b;
+  b.ambient = glm::vec4(m.ambient);
+  b.diffuse = glm::vec4(m.diffuse);
+  b.specular = glm::vec4(m.specular);
+  b.shininess = float(m.shininess);
+  const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
+  b.emission = peak > 0 ? glm::vec4(glm::vec3(m.emission / peak), 1.0f) : glm::vec4(0, 0, 0, 1);
+  return b;
+}
+
+}  // namespace
+
+LocalScene prepareLocalScene(Scene scene) {
+  if (scene.lights.empty())
+    throw inputError(scene.path, "a scene with lights for --mode local", "none");
+  LocalScene local;
+  local.mesh = buildPatchMesh(scene, resolveMeshSettings(scene, {}));
+  local.scene = std::move(scene);
+  local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
+  local.boundsMax = -local.boundsMin;
+  for (auto v : local.mesh.mesh.vertices()) {
+    glm::dvec3 p = PatchMesh::toGlm(local.mesh.mesh.point(v));
+    local.boundsMin = glm::min(local.boundsMin, p);
+    local.boundsMax = glm::max(local.boundsMax, p);
+  }
+  if (local.mesh.elementCount() == 0) throw inputError(local.scene.path, "a scene with surfaces", "none");
+  return local;
+}
+
+LocalScene loadLocalScene(const std::string& path) { return prepareLocalScene(loadScene(path)); }
+
+Camera effectiveCamera(const LocalScene& local, const RenderOptions& options) {
+  return effectiveCamera(boundsOnly(local), options);
+}
+
+namespace detail {
+
+LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
+  const PatchMesh& pm = local.mesh;
+  // Elements grouped by surface, one material batch per surface.
+  const auto bySurface = internal::groupBySurface(local.scene.surfaces.size(), size_t(pm.elementCount()),
+                                                  [&](size_t e) { return pm.surface(int(e)); });
+  LocalDrawList list;
+  list.positions.reserve(size_t(pm.elementCount()) * 3);
+  list.normals.reserve(size_t(pm.elementCount()) * 3);
+  internal::appendBatches(list, local.scene, bySurface, localBatch, [&](size_t e) {
+    const glm::vec3 faceNormal(pm.normal(int(e)));
+    for (auto v : pm.mesh.fv_range(TriMesh::FaceHandle(int(e)))) {
+      list.positions.push_back(glm::vec3(PatchMesh::toGlm(pm.mesh.point(v))));
+      list.normals.push_back(shade == Shading::Flat ? faceNormal
+                                                    : glm::vec3(PatchMesh::toGlm(pm.mesh.normal(v))));
+    }
+  });
+  return list;
+}
+
+}  // namespace detail
+
+Image renderLocal(const LocalScene& local, const RenderOptions& o) {
+  internal::checkSize(o);
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode local", "--backend osmesa (the local model is OpenGL-only)", "--backend software");
+  if (o.exposure) throw inputError("--mode local", "no --exposure (lighting sets the brightness)", "--exposure");
+  if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  const ResultFile bounds = boundsOnly(local);
+  viewProjection(bounds, effectiveCamera(bounds, o), w, h, &projection, &view);
+  const detail::LocalDrawList list = detail::buildLocalDrawList(local, o.shade);
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaLocal(list, local.scene, projection, view, w, h, o.shade, o.wireframe, rgb);
+  return internal::imageOf(rgb, o);
+}
+
+}  // namespace rad::viewer

@@ -1,0 +1,177 @@
+// Radiosity mode: the result's display colours (or radiance B/π) per vertex, drawn through
+// OSMesa's OpenGL or the raster core to the same picture, with the software wireframe that
+// mirrors OpenGL's.
+#include <algorithm>
+#include <cmath>
+
+#include "display/viewer_internal.h"
+#include "mesh/color.h"
+
+namespace rad::viewer {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// The display colour of radiosity b at exposure K, as OpenGL takes it: bytes scaled to [0, 1].
+glm::vec4 displayColour(const glm::dvec3& b, double exposure) {
+  return glm::vec4(displayByte(b.x, exposure) / 255.0f, displayByte(b.y, exposure) / 255.0f,
+                   displayByte(b.z, exposure) / 255.0f, 1.0f);
+}
+
+/// A stored display colour (bytes) scaled to [0, 1].
+glm::vec4 storedColour(const std::array<uint8_t, 3>& c) {
+  return glm::vec4(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f, 1.0f);
+}
+
+/// The window-depth bias of a triangle's wireframe: its largest window-depth slope per pixel
+/// (its depth plane, when all three vertices are in front of the eye) plus kWireDepthBias, as
+/// glPolygonOffset(1, 1) pushes the fill back in OpenGL.
+float wireDepthBias(const std::vector<glm::vec4>& clip, const uint32_t v[3], double W, double H) {
+  double slope = 0;
+  glm::dvec3 w[3] = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  bool inFront = true;
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec4 c(clip[v[k]]);
+    if (c.w <= 0) inFront = false;
+    else w[k] = glm::dvec3((c.x / c.w + 1) * 0.5 * W, (c.y / c.w + 1) * 0.5 * H, (c.z / c.w + 1) * 0.5);
+  }
+  if (inFront) {
+    const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+    if (std::abs(n.z) > 1e-12) slope = std::max(std::abs(n.x / n.z), std::abs(n.y / n.z));
+  }
+  return float(slope + detail::kWireDepthBias);
+}
+
+/// The vertex indices of the front-facing triangles of a de-indexed list (3 vertices each).
+std::vector<uint32_t> frontTriangles(const std::vector<glm::vec4>& clip) {
+  std::vector<uint32_t> front;
+  for (uint32_t t = 0; 3 * size_t(t) + 2 < clip.size(); ++t)
+    if (detail::frontFacing(clip[3 * t], clip[3 * t + 1], clip[3 * t + 2]))
+      front.insert(front.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  return front;
+}
+
+/// The raster core's radiance picture of the draw list (RGB floats, bottom-up) into `target`.
+std::vector<float> softwareRadiance(raster::Target& target, const raster::State& state,
+                                    const std::vector<glm::vec4>& clip, const detail::DrawList& list) {
+  const size_t n = clip.size();
+  target.clear();
+  raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.radiance.data());
+  std::vector<float> radiance(target.color.size() * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) radiance[p * 3 + c] = target.color[p][c];
+  return radiance;
+}
+
+/// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.
+void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int width, int height,
+                    Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
+                    std::vector<float>* radiance, bool cullBack) {
+  raster::Target target(width, height, /*withItem=*/false, /*withColor=*/true);
+  raster::State state;
+  state.shade = shade == Shading::Flat ? raster::Shade::Flat : raster::Shade::Smooth;
+  if (cullBack) state.cull = raster::Cull::Back;
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, list.positions, clip);
+  const size_t n = list.positions.size();
+  raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.display.data());
+  if (wireframe && cullBack) {
+    // As OpenGL culls before GL_LINE rasterisation: only the front faces' edges.
+    const std::vector<uint32_t> front = frontTriangles(clip);
+    detail::drawSoftwareWireframe(target, clip, &front);
+  } else if (wireframe) {
+    detail::drawSoftwareWireframe(target, clip, nullptr);
+  }
+  rgb = internal::targetBytes(target);
+  if (radiance) *radiance = softwareRadiance(target, state, clip, list);
+}
+
+}  // namespace
+
+namespace detail {
+
+bool frontFacing(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c) {
+  const glm::dvec3 p(a.x, a.y, a.w), q(b.x, b.y, b.w), r(c.x, c.y, c.w);
+  return glm::dot(p, glm::cross(q, r)) > 0;
+}
+
+void drawSoftwareWireframe(raster::Target& target, const std::vector<glm::vec4>& clip,
+                           const std::vector<uint32_t>* triangles) {
+  const size_t triangleCount = triangles ? triangles->size() / 3 : clip.size() / 3;
+  const raster::State state;
+  const glm::vec4 colour(glm::vec3(kWireByte / 255.0f), 1.0f);
+  for (size_t t = 0; t < triangleCount; ++t) {
+    uint32_t v[3];
+    for (int k = 0; k < 3; ++k) v[k] = triangles ? (*triangles)[3 * t + k] : uint32_t(3 * t + k);
+    const uint32_t edges[6] = {v[0], v[1], v[1], v[2], v[2], v[0]};
+    raster::drawLines(target, state, clip.data(), clip.size(), edges, 3, colour,
+                      wireDepthBias(clip, v, target.width, target.height));
+  }
+}
+
+DrawList buildDrawList(const ResultFile& mesh, Shading shade, double exposure, bool storedColours) {
+  DrawList list;
+  const size_t n = mesh.faces.size() * 3;
+  list.positions.reserve(n);
+  list.display.reserve(n);
+  list.radiance.reserve(n);
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int corner = 0; corner < 3; ++corner) {
+      const int v = mesh.faces[f][corner];
+      const glm::dvec3& b = shade == Shading::Flat ? mesh.faceRadiosity[f] : mesh.vertexRadiosity[v];
+      list.positions.push_back(mesh.positions[v]);
+      list.display.push_back(storedColours ? storedColour(mesh.vertexColour[v]) : displayColour(b, exposure));
+      list.radiance.push_back(glm::vec4(glm::dvec3(b / kPi), 1.0));
+    }
+  return list;
+}
+
+}  // namespace detail
+
+namespace internal {
+
+bool showsStoredColours(const ResultFile& mesh, const RenderOptions& o) {
+  // Gouraud at the file's own exposure shows the file's colours, which carry the ambient term of
+  // an unconverged solve; anything else is computed from the radiosities.
+  return o.shade == Shading::Smooth && !o.exposure && mesh.exposure && !mesh.vertexColour.empty();
+}
+
+}  // namespace internal
+
+Image render(const ResultFile& mesh, const RenderOptions& o) {
+  internal::checkSize(o);
+  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
+  glm::mat4 projection, view;
+  const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
+  const detail::DrawList list =
+      detail::buildDrawList(mesh, o.shade, effectiveExposure(mesh, o), internal::showsStoredColours(mesh, o));
+  std::vector<uint8_t> rgb;
+  std::vector<float> radiance;
+  if (o.backend == Backend::Software)
+    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr,
+                   o.cullBack);
+  else
+    detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
+                         o.radiance ? &radiance : nullptr, o.cullBack);
+  Image image = internal::imageOf(rgb, o);
+  if (o.radiance) image.radiance = internal::downsampleFloats(radiance, o.width, o.height, o.ssaa);
+  return image;
+}
+
+std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions& o) {
+  raster::Target target(o.width, o.height, /*withItem=*/true, /*withColor=*/false);
+  const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), o.width, o.height);
+  std::vector<glm::vec4> clip;
+  raster::transform(mvp, mesh.positions, clip);
+  raster::State state;
+  if (o.cullBack) state.cull = raster::Cull::Back;
+  static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
+  raster::drawTriangles(target, state, clip.data(), clip.size(),
+                        reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
+  std::vector<uint32_t> out(target.item.size());
+  for (int y = 0; y < o.height; ++y)
+    std::copy_n(&target.item[size_t(o.height - 1 - y) * o.width], o.width, &out[size_t(y) * o.width]);
+  return out;
+}
+
+}  // namespace rad::viewer

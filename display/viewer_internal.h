@@ -1,0 +1,66 @@
+#pragma once
+// What the viewer's files share and nobody else needs: supersampling, checks of the render
+// options, and the per-surface batches of the lit models. Not a public header.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "display/raster.h"
+#include "display/viewer.h"
+#include "mesh/result_file.h"
+#include "mesh/scene.h"
+
+namespace rad::viewer::internal {
+
+/// A [0, 1] value as a display byte, rounded.
+uint8_t toByte(float v);
+
+/// The raster target's colours as bytes (RGB, the target's rows: bottom row first).
+std::vector<uint8_t> targetBytes(const raster::Target& target);
+
+/// Box-filters a (width·k) × (height·k) picture of bytes (sRGB, bottom row first) down to
+/// width × height, top row first, averaging in linear light.
+std::vector<uint8_t> downsampleBytes(const std::vector<uint8_t>& big, int width, int height, int k);
+
+/// The same for linear floats: a plain average.
+std::vector<float> downsampleFloats(const std::vector<float>& big, int width, int height, int k);
+
+/// The picture of a render at options.width × options.height from its supersampled bytes
+/// (bottom row first, options.ssaa times larger per axis).
+Image imageOf(const std::vector<uint8_t>& big, const RenderOptions& options);
+
+/// Whether a render draws the file's own display colours: Gouraud at the file's exposure.
+bool showsStoredColours(const ResultFile& mesh, const RenderOptions& options);
+
+/// Checks the image size: width and height times ssaa in 1..raster::kMaxSize. Throws InputError.
+void checkSize(const RenderOptions& options);
+
+/// Checks that every face has a surface index of `scene`; `where` names the mode. Throws
+/// InputError.
+void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where);
+
+/// The items 0..count-1 grouped by their scene surface (surfaceOf(item)), in item order.
+template <class SurfaceOf>
+std::vector<std::vector<size_t>> groupBySurface(size_t surfaceCount, size_t count, SurfaceOf surfaceOf) {
+  std::vector<std::vector<size_t>> groups(surfaceCount);
+  for (size_t i = 0; i < count; ++i) groups.at(size_t(surfaceOf(i))).push_back(i);
+  return groups;
+}
+
+/// One batch per surface that has items, in surface order: the batch starts as
+/// makeBatch(surface's material), then addItem(item) appends each item's vertices to `list`,
+/// and the batch covers the vertices appended.
+template <class List, class MakeBatch, class AddItem>
+void appendBatches(List& list, const Scene& scene, const std::vector<std::vector<size_t>>& groups,
+                   MakeBatch makeBatch, AddItem addItem) {
+  for (size_t s = 0; s < groups.size(); ++s) {
+    if (groups[s].empty()) continue;
+    detail::LocalBatch b = makeBatch(scene.materials.at(size_t(scene.surfaces[s].material)));
+    b.first = int(list.positions.size());
+    for (size_t item : groups[s]) addItem(item);
+    b.count = int(list.positions.size()) - b.first;
+    list.batches.push_back(b);
+  }
+}
+
+}  // namespace rad::viewer::internal
