@@ -89,13 +89,13 @@ struct Slots {
   }
 };
 
+#if defined(__SSE2__)
 /// Adds each pixel's delta form factor (delta[k]) to the slot of the item it shows (item[k]).
 inline void accumulateFace(const uint32_t* item, const double* delta, size_t count, Slots& slots) {
-  size_t k = 0;
-#if defined(__SSE2__)
   // Neighbouring pixels mostly see the same element: while four pixels at a time continue
   // the current run, sum them in two independent partial sums; a chunk where the run ends
   // flushes the run and adds its own pixels one by one.
+  size_t k = 0;
   uint32_t run = item[0];
   __m128d part0 = _mm_setzero_pd(), part1 = _mm_setzero_pd();
   auto flush = [&] {
@@ -120,10 +120,14 @@ inline void accumulateFace(const uint32_t* item, const double* delta, size_t cou
   }
   flush();
   for (; k < count; ++k) slots.add(item[k], delta[k]);  // the last 0-3 pixels
+}
 #else
+/// Adds each pixel's delta form factor (delta[k]) to the slot of the item it shows (item[k]),
+/// a run of equal items at a time.
+inline void accumulateFace(const uint32_t* item, const double* delta, size_t count, Slots& slots) {
   uint32_t run = item[0];
   double sum = 0;
-  for (; k < count; ++k) {
+  for (size_t k = 0; k < count; ++k) {
     if (item[k] != run) {
       slots.add(run, sum);
       run = item[k];
@@ -132,8 +136,8 @@ inline void accumulateFace(const uint32_t* item, const double* delta, size_t cou
     sum += delta[k];
   }
   slots.add(run, sum);
-#endif
 }
+#endif
 
 }  // namespace
 

@@ -186,10 +186,9 @@ Command addFormFactorsCommand(CLI::App& app) {
   normal->needs(point);
   addSolverFlags(*sub, o->flags);
   addMeshFlags(*sub, o->flags);
-  sub->callback([sub, from, point] {
+  sub->callback([from, point] {
     if (from->count() == 0 && point->count() == 0)
       throw CLI::RequiredError("--from or --point");
-    (void)sub;
   });
   return {sub, [o] { runFormFactors(*o); }};
 }
