@@ -1,5 +1,6 @@
 // Tests of the raster core (display/raster.h).
 #include "display/raster.h"
+#include "tests/support.h"
 
 #include <gtest/gtest.h>
 
@@ -798,9 +799,11 @@ TEST(Raster, NonIndexedDrawAndBadIndices) {
   EXPECT_EQ(t.item[t.index(7, 0)], 0u);  // ids default to the triangle index
   EXPECT_EQ(t.item[t.index(0, 7)], 1u);
   const uint32_t bad[3] = {0, 1, 6};
-  EXPECT_THROW(raster::drawTriangles(t, State{}, m.clip.data(), m.clip.size(), bad, 1), std::out_of_range);
+  rad::test::expectError<std::out_of_range>([&] { raster::drawTriangles(t, State{}, m.clip.data(), m.clip.size(), bad, 1); },
+                                       {"raster::drawTriangles", "vertex index out of range"});
   const uint32_t huge[9] = {0, 1, 2, 3, 0x80000001u, 5, 0, 1, 2};  // beyond int32 as well
-  EXPECT_THROW(raster::drawTriangles(t, State{}, m.clip.data(), m.clip.size(), huge, 3), std::out_of_range);
+  rad::test::expectError<std::out_of_range>([&] { raster::drawTriangles(t, State{}, m.clip.data(), m.clip.size(), huge, 3); },
+                                       {"raster::drawTriangles", "vertex index out of range"});
 }
 
 TEST(Raster, TransformMatchesMatrixProduct) {
@@ -827,7 +830,7 @@ TEST(Raster, ClearResetsBuffers) {
     EXPECT_EQ(t.color[i], glm::vec4(0));
     EXPECT_EQ(t.hits[i], 0u);
   }
-  EXPECT_THROW(Target(0, 5), std::invalid_argument);
+  rad::test::expectError<std::invalid_argument>([] { (void)Target(0, 5); }, {"raster::Target", "size must be within 1..kMaxSize"});
 }
 
 }  // namespace
@@ -975,7 +978,8 @@ TEST(RasterLines, ViewportAndNearPlaneClipping) {
   for (uint32_t h : t.hits) EXPECT_EQ(h, 0u);
   // Bad indices.
   const uint32_t bad[2] = {0, 2};
-  EXPECT_THROW(raster::drawLines(t, countingState(), seg, 2, bad, 1, glm::vec4(1.0f)), std::out_of_range);
+  rad::test::expectError<std::out_of_range>([&] { raster::drawLines(t, countingState(), seg, 2, bad, 1, glm::vec4(1.0f)); },
+                                       {"raster::drawLines", "vertex index out of range"});
 }
 
 TEST(RasterLines, DepthTestWithBiasTowardTheViewer) {

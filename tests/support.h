@@ -3,11 +3,14 @@
 // adds a scene solved as `radiosity solve` solves it).
 #include <algorithm>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "mesh/scene.h"
+#include <gtest/gtest.h>
+
+#include "mesh/error.h"
 
 namespace rad::test {
 
@@ -28,5 +31,18 @@ inline std::vector<std::string> sceneFiles(const std::string& folder) {
 
 /// A scene file's name without folder and extension, for test names.
 inline std::string sceneName(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+/// Expects f() to throw an E whose message contains every one of `parts` (where, what was
+/// expected, what was found), and prints the message when it does not.
+template <class E = InputError, class F>
+void expectError(F&& f, std::initializer_list<std::string> parts) {
+  try {
+    f();
+    ADD_FAILURE() << "no error thrown; expected one saying: " << *parts.begin();
+  } catch (const E& e) {
+    for (const auto& part : parts)
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << "message: " << e.what() << "\nlacks: " << part;
+  }
+}
 
 }  // namespace rad::test
