@@ -1,4 +1,5 @@
 #include "radiosity/reference_solver.h"
+#include "radiosity/settings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,9 +36,10 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
                                  const SolverOptions& options) {
   const int n = mesh.elementCount();
   if (n > kMaxReferenceElements)
-    throw inputError("--reference direct", "a mesh of at most " + std::to_string(kMaxReferenceElements) +
-                                               " elements for the dense reference solution",
-                     std::to_string(n) + " elements (use a coarser mesh or --reference FILE.ply)");
+    throw SettingError(inputError("fixed point 'direct'", "a mesh of at most " + std::to_string(kMaxReferenceElements) +
+                                                          " elements for the dense full-matrix solution",
+                                  std::to_string(n) + " elements (raise solver.max_element_edge, or compare "
+                                                      "with an earlier result file)").what());
   G_ = Eigen::MatrixXd::Zero(n, n);
   grey_ = isGrey(mesh);
   rho_.resize(n);

@@ -11,6 +11,7 @@
 #include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/solve.h"
+#include "tests/support.h"
 #include "radiosity/pathtrace/path_tracer.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/progressive_solver.h"
@@ -20,7 +21,7 @@
 namespace rad::pathtrace {
 namespace {
 
-const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+using test::kScenes;
 
 /// An estimate agrees with an exact answer when within this many standard errors.
 constexpr double kSigmas = 3;
@@ -253,20 +254,6 @@ Settings furnaceSettings(const Scene& furnace) {
   return resolveSettings(furnace, flags);
 }
 
-/// The meshed scene solved progressively: what Gouraud shading shows at each vertex.
-std::vector<glm::dvec3> solvedAndShown(const MeshedScene& m, const Scene& scene, const Settings& settings) {
-  HemicubeFactors factors(m.mesh, settings.hemicubeResolution, scene.diagonal(), settings.seed, 0,
-                          settings.emitterHemicubeResolution);
-  SolverOptions options;
-  options.tolerance = settings.tolerance;
-  options.emitterSamples = settings.emitterSamples;
-  ProgressiveSolver solver(m.mesh, factors, options);
-  while (solver.step()) {}
-  std::unique_ptr<VertexDirect> direct;
-  if (m.direct) direct.reset(new VertexDirect{solver.direct(), m.direct->radiosity(), m.base.get()});
-  return vertexRadiosity(m.mesh, solver.radiosity(), direct.get());
-}
-
 /// Points on every face of the furnace, near edges too, located on their surface.
 void furnacePoints(const Scene& furnace, const pathtrace::TraceScene& traced,
                    std::vector<pathtrace::SurfacePoint>& points) {
@@ -296,10 +283,10 @@ std::vector<ReferencePoint> asReference(const Scene& scene, const std::vector<pa
 /// known: the true error measured against a path-traced reference agrees with the error
 /// against the exact answer to within the reference's own noise.
 TEST(TrueErrorTest, MeasuredAgainstTheReferenceAsAgainstTheTruth) {
-  const Scene furnace = loadScene(std::string(RAD_SOURCE_DIR) + "/scenes/furnace.json");
+  const Scene furnace = loadScene(test::kScenes + "furnace.json");
   const Settings settings = furnaceSettings(furnace);
   const MeshedScene m = meshScene(furnace, settings);
-  const std::vector<glm::dvec3> shown = solvedAndShown(m, furnace, settings);
+  const std::vector<glm::dvec3> shown = shownAtVertices(m, solveRadiosity(m));  // as `radiosity solve` shows it
 
   // The reference by path tracing, and the truth.
   const pathtrace::TraceScene traced(furnace);

@@ -13,11 +13,12 @@
 #include "radiosity/result.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/settings.h"
+#include "tests/support.h"
 
 namespace rad {
 namespace {
 
-const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+using test::kScenes;
 
 /// The tables of oracles.md §4 are given to 1e-9; a converged solve matches them to this.
 constexpr double kTable = 1e-6;
