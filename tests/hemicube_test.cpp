@@ -10,11 +10,12 @@
 #include "mesh/scene.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/point_polygon.h"
+#include "tests/support.h"
 
 namespace rad {
 namespace {
 
-const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+using test::kScenes;
 
 /// The oracles are given to six or seven digits.
 constexpr double kOracleDigits = 2e-6;
@@ -178,7 +179,7 @@ INSTANTIATE_TEST_SUITE_P(Resolutions, HemicubeAccuracyTest, ::testing::Values(64
 
 // ---- Hemicubes in meshed scenes --------------------------------------------------------------
 
-struct MeshedScene {
+struct SceneAndMesh {
   Scene scene;
   PatchMesh mesh;
   HemicubeGeometry geometry;
@@ -194,15 +195,15 @@ struct MeshedScene {
   }
 };
 
-MeshedScene meshed(const std::string& name, double element, double patch) {
-  MeshedScene m{loadScene(kScenes + name), {}, {}};
+SceneAndMesh meshed(const std::string& name, double element, double patch) {
+  SceneAndMesh m{loadScene(kScenes + name), {}, {}};
   m.mesh = buildPatchMesh(m.scene, {element, patch});
   m.geometry = HemicubeGeometry::fromMesh(m.mesh);
   return m;
 }
 
 TEST(HemicubeSceneTest, ClosedCubeRowsSumToOne) {
-  MeshedScene m = meshed("cube.json", 0.125, 0.25);
+  SceneAndMesh m = meshed("cube.json", 0.125, 0.25);
   Hemicube hemicube(m.geometry, 256, m.scene.diagonal());
   FormFactors ff;
   int tested = 0;
@@ -217,7 +218,7 @@ TEST(HemicubeSceneTest, ClosedCubeRowsSumToOne) {
 }
 
 TEST(HemicubeSceneTest, OpenCornellBoxFactorsPlusSkyAreOneAndMatchTheLightsOracle) {
-  MeshedScene m = meshed("cornell_empty.json", 30, 90);
+  SceneAndMesh m = meshed("cornell_empty.json", 30, 90);
   Hemicube hemicube(m.geometry, 256, m.scene.diagonal());
   FormFactors ff;
   glm::dvec3 lightCentre(278, 548.8 - 1e-9, 279.5);
@@ -236,7 +237,7 @@ TEST(HemicubeSceneTest, OpenCornellBoxFactorsPlusSkyAreOneAndMatchTheLightsOracl
 }
 
 TEST(HemicubeSceneTest, NoLightLeaksUnderABlock) {
-  MeshedScene m = meshed("cornell.json", 30, 90);
+  SceneAndMesh m = meshed("cornell.json", 30, 90);
   Hemicube hemicube(m.geometry, 256, m.scene.diagonal());
   FormFactors ff;
   int light = m.surface("light");
@@ -251,7 +252,7 @@ TEST(HemicubeSceneTest, NoLightLeaksUnderABlock) {
 }
 
 TEST(HemicubeSceneTest, SameSeedSameFactors) {
-  MeshedScene m = meshed("cornell.json", 45, 90);
+  SceneAndMesh m = meshed("cornell.json", 45, 90);
   Hemicube a(m.geometry, 128, m.scene.diagonal()), b(m.geometry, 128, m.scene.diagonal());
   FormFactors fa, fb;
   for (int e : {0, 500, 1000}) {
