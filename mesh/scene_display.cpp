@@ -1,0 +1,134 @@
+// The display-only sections of the scene file: camera, and OpenGL's light model, lights and
+// fog for the viewer's local model.
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/scene_sections.h"
+
+namespace rad::scene_file {
+namespace {
+
+/// GL_MAX_LIGHTS in every OpenGL implementation.
+constexpr size_t kMaxLights = 8;
+
+/// The light's type, from its "type" key, and the keys a light of that type accepts.
+Light::Type lightType(const Node& n, std::vector<std::string>& keys) {
+  const std::string type = n["type"].string();
+  keys = {"type", "ambient", "diffuse", "specular"};
+  if (type == "directional") {
+    keys.push_back("direction");
+    return Light::Type::Directional;
+  }
+  if (type != "point" && type != "spot") n["type"].fail("\"directional\", \"point\" or \"spot\"");
+  for (const char* k : {"position", "attenuation"}) keys.push_back(k);
+  if (type == "spot")
+    for (const char* k : {"direction", "cutoff_deg", "exponent"}) keys.push_back(k);
+  return type == "point" ? Light::Type::Point : Light::Type::Spot;
+}
+
+/// The key a light of its type must have.
+Node required(const Node& n, const char* key) {
+  if (!n.has(key))
+    n.failWith(std::string("a \"") + key + "\" key for a " + n["type"].string() + " light", "none");
+  return n[key];
+}
+
+/// The light's position and direction, as its type needs them.
+void readPlacement(const Node& n, Light& l) {
+  if (l.type != Light::Type::Point) {
+    Node d = required(n, "direction");
+    l.direction = d.vec3();
+    if (glm::length(l.direction) == 0) d.fail("a non-zero direction");
+  }
+  if (l.type != Light::Type::Directional) l.position = required(n, "position").vec3();
+}
+
+/// The light's colours, attenuation and spot cone.
+void readShining(const Node& n, Light& l) {
+  if (n.has("ambient")) l.ambient = n["ambient"].color();
+  if (n.has("diffuse")) l.diffuse = n["diffuse"].color();
+  if (n.has("specular")) l.specular = n["specular"].color();
+  if (n.has("attenuation")) {
+    l.attenuation = nonNegativeRgb(n["attenuation"], "an attenuation coefficient >= 0");
+    if (l.attenuation == glm::dvec3(0.0)) n["attenuation"].fail("at least one non-zero coefficient");
+  }
+  if (l.type == Light::Type::Spot) {
+    l.cutoffDeg = required(n, "cutoff_deg").number(0, 90, "[0, 90]");
+    if (n.has("exponent")) l.exponent = n["exponent"].number(0, 128, "[0, 128]");
+  }
+}
+
+Light readLight(const Node& n) {
+  if (!n.value().is_object()) n.fail("an object");
+  if (!n.has("type")) n.failWith("a \"type\" key", "none");
+  Light l;
+  std::vector<std::string> keys;
+  l.type = lightType(n, keys);
+  n.expectObject(keys);
+  readPlacement(n, l);
+  readShining(n, l);
+  return l;
+}
+
+/// Fog's "mode".
+Fog::Mode fogMode(const Node& n) {
+  static const std::map<std::string, Fog::Mode> modes = {
+      {"linear", Fog::Mode::Linear}, {"exp", Fog::Mode::Exp}, {"exp2", Fog::Mode::Exp2}};
+  const auto it = modes.find(n.string());
+  if (it == modes.end()) n.fail("\"linear\", \"exp\" or \"exp2\"");
+  return it->second;
+}
+
+/// The camera (node n) looks somewhere, with an up vector across its view.
+void checkView(const Node& n, const Camera& c) {
+  glm::dvec3 view = c.target - c.eye;
+  if (glm::length(view) == 0) n["target"].failWith("a target away from the eye", "the eye");
+  if (glm::length(glm::cross(view, c.up)) <= 1e-9 * glm::length(view) * glm::length(c.up))
+    n["up"].failWith("an up vector not parallel to the view direction", "a parallel one");
+}
+
+}  // namespace
+
+Camera readCamera(const Node& n) {
+  n.expectObject({"eye", "target", "up", "fov_y_deg"});
+  Camera c;
+  for (const char* key : {"eye", "target", "up"})
+    if (!n.has(key)) n.failWith(std::string("a \"") + key + "\" key", "none");
+  c.eye = n["eye"].vec3();
+  c.target = n["target"].vec3();
+  c.up = n["up"].vec3();
+  if (n.has("fov_y_deg")) c.fovYDeg = n["fov_y_deg"].number(1e-3, 179.999, "(0, 180)");
+  checkView(n, c);
+  return c;
+}
+
+void readLightModel(const Node& n, LightModel& model) {
+  n.expectObject({"ambient", "local_viewer", "two_sided"});
+  if (n.has("ambient")) model.ambient = n["ambient"].color();
+  if (n.has("local_viewer")) model.localViewer = n["local_viewer"].boolean();
+  if (n.has("two_sided")) model.twoSided = n["two_sided"].boolean();
+}
+
+void readLights(const Node& n, std::vector<Light>& lights) {
+  n.expectArray(0, "lights");
+  if (n.size() > kMaxLights) n.fail("at most 8 lights (OpenGL's GL_MAX_LIGHTS)");
+  for (size_t i = 0; i < n.size(); ++i) lights.push_back(readLight(n[i]));
+}
+
+Fog readFog(const Node& n) {
+  n.expectObject({"mode", "color", "start", "end", "density"});
+  Fog f;
+  if (!n.has("mode")) n.failWith("a \"mode\" key", "none");
+  f.mode = fogMode(n["mode"]);
+  if (n.has("color")) f.color = n["color"].color();
+  if (n.has("start")) f.start = n["start"].number();
+  if (n.has("end")) f.end = n["end"].number();
+  if (n.has("density")) f.density = n["density"].number(0, HUGE_VAL, "[0, inf)");
+  if (f.mode == Fog::Mode::Linear && f.end == f.start)
+    n.failWith("linear fog with end != start", "end = start = " + std::to_string(f.end));
+  return f;
+}
+
+}  // namespace rad::scene_file
