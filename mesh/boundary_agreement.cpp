@@ -50,13 +50,18 @@ std::vector<int> sortedUnique(std::vector<int> ids) {
   return ids;
 }
 
-/// The points (ids) in a hash of about 2 ∛n cells along the widest side of their box.
-SpatialHash pointHash(const PointTable& table, const std::vector<int>& ids) {
-  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+/// Grows the box [lo, hi] around the points (ids).
+void bounds(const PointTable& table, const std::vector<int>& ids, glm::dvec3& lo, glm::dvec3& hi) {
   for (int i : ids) {
     lo = glm::min(lo, table[i]);
     hi = glm::max(hi, table[i]);
   }
+}
+
+/// The points (ids) in a hash of about 2 ∛n cells along the widest side of their box.
+SpatialHash pointHash(const PointTable& table, const std::vector<int>& ids) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  bounds(table, ids, lo, hi);
   double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
   int cells = std::clamp(int(2 * std::cbrt(double(ids.size()))), 1, 256);
   SpatialHash hash(extent / cells * (1 + 1e-9), lo);
@@ -206,19 +211,24 @@ class PieceMesher {
     return it->second;
   }
 
+  /// Appends the points (ids) of a chain edge to `points`: its first end and the points
+  /// inside it, in the direction it is walked.
+  void edgePoints(const ChainEdge& edge, std::vector<int>& points) {
+    const Segment& s = segments_[edge.segment];
+    points.push_back(edge.forward ? s.a : s.b);
+    for (size_t j = 0; j < s.t.size(); ++j) {
+      double t = edge.forward ? s.t[j] : s.t[s.t.size() - 1 - j];
+      points.push_back(table_.id(pointOn(s, t)));
+    }
+  }
+
   /// Appends the points (ids) of the chain to `points`, each with the chain edge it starts;
   /// an open chain (a line) ends with its last point.
   void chainPoints(const std::vector<ChainEdge>& chain, bool open, std::vector<int>& points,
                    std::vector<int>& edges) {
     for (size_t k = 0; k < chain.size(); ++k) {
-      const Segment& s = segments_[chain[k].segment];
-      points.push_back(chain[k].forward ? s.a : s.b);
-      edges.push_back(int(k));
-      for (size_t j = 0; j < s.t.size(); ++j) {
-        double t = chain[k].forward ? s.t[j] : s.t[s.t.size() - 1 - j];
-        points.push_back(table_.id(pointOn(s, t)));
-        edges.push_back(int(k));
-      }
+      edgePoints(chain[k], points);
+      edges.resize(points.size(), int(k));
     }
     if (open && !chain.empty()) {
       const Segment& s = segments_[chain.back().segment];
@@ -253,6 +263,16 @@ class PieceMesher {
     return poly;
   }
 
+  /// The id of point i of piece p's triangulation: the boundary's, a shared point on a
+  /// segment (a new one marks the segment's other users dirty), or a point of its own.
+  int pointId(int p, const Polygon2& poly, const BoundaryIds& b, const Triangulation2& tri,
+              size_t i, std::vector<bool>* dirty) {
+    if (tri.ids[i] >= 0) return tri.ids[i];
+    if (tri.onBoundary[i] && dirty) return addBoundaryPoint(p, poly, b.edgeOf, tri.points[i], *dirty);
+    if (tri.onBoundary[i]) ++unresolved_;
+    return table_.id(pieces_[p].frame.lift(tri.points[i]));
+  }
+
   /// Meshes piece p; points the mesher added on a shared boundary are shared (and their
   /// segment's other users marked dirty) unless `dirty` is null (the last round).
   void meshPiece(int p, std::vector<bool>* dirty) {
@@ -262,16 +282,7 @@ class PieceMesher {
     const Triangulation2 tri =
         meshPolygon(poly, maxEdge_, scene_.surfaces[size_t(piece.surface)].where, piece.meshFace);
     std::vector<int> global(tri.points.size());
-    for (size_t i = 0; i < tri.points.size(); ++i) {
-      if (tri.ids[i] >= 0)
-        global[i] = tri.ids[i];
-      else if (tri.onBoundary[i] && dirty)
-        global[i] = addBoundaryPoint(p, poly, b.edgeOf, tri.points[i], *dirty);
-      else {
-        if (tri.onBoundary[i]) ++unresolved_;
-        global[i] = table_.id(piece.frame.lift(tri.points[i]));
-      }
-    }
+    for (size_t i = 0; i < tri.points.size(); ++i) global[i] = pointId(p, poly, b, tri, i, dirty);
     auto& out = results_[p];
     out.clear();
     for (const auto& t : tri.triangles) out.push_back({global[t[0]], global[t[1]], global[t[2]]});

@@ -41,11 +41,16 @@ glm::dvec2 approx(const EK::Point_2& p) { return {CGAL::to_double(p.x()), CGAL::
 
 /// Even-odd: inside the polygon's rings.
 bool insideRings(const std::vector<std::vector<EK::Point_2>>& rings, const EK::Point_2& q) {
-  bool inside = false;
-  for (const auto& ring : rings)
-    if (CGAL::bounded_side_2(ring.begin(), ring.end(), q, EK()) == CGAL::ON_BOUNDED_SIDE)
-      inside = !inside;
-  return inside;
+  return std::count_if(rings.begin(), rings.end(), [&](const auto& ring) {
+           return CGAL::bounded_side_2(ring.begin(), ring.end(), q, EK()) == CGAL::ON_BOUNDED_SIDE;
+         }) % 2 == 1;
+}
+
+/// Calls f on each boundary cycle of face `face`: its outer one (if any), then its holes.
+template <class F>
+void forEachCycle(Face face, F&& f) {
+  if (face->has_outer_ccb()) f(face->outer_ccb());
+  for (auto hole = face->inner_ccbs_begin(); hole != face->inner_ccbs_end(); ++hole) f(*hole);
 }
 
 /// Ray-crossing parity of q against one boundary cycle: true when odd. Sets `onEdge` when q
@@ -106,10 +111,9 @@ bool pointBesideCycle(Face f, Ccb start, EK::Point_2& q) {
 /// A point strictly inside face f: beside one of its edges, outer boundary first.
 EK::Point_2 pointIn(Face f) {
   EK::Point_2 q;
-  if (f->has_outer_ccb() && pointBesideCycle(f, f->outer_ccb(), q)) return q;
-  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
-    if (pointBesideCycle(f, *hole, q)) return q;
-  return f->outer_ccb()->source()->point();  // unreachable for faces of non-zero area
+  bool found = false;
+  forEachCycle(f, [&](Ccb c) { found = found || pointBesideCycle(f, c, q); });
+  return found ? q : f->outer_ccb()->source()->point();  // unreachable for faces of non-zero area
 }
 
 /// Signed area of a boundary cycle (counter-clockwise positive); edges walked both ways
@@ -126,9 +130,8 @@ double cycleArea(Ccb start) {
 
 /// The area of face f: its outer cycle less its holes.
 double faceArea(Face f) {
-  double area = f->has_outer_ccb() ? cycleArea(f->outer_ccb()) : 0;
-  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
-    area += cycleArea(*hole);  // holes wind clockwise: negative
+  double area = 0;
+  forEachCycle(f, [&](Ccb c) { area += cycleArea(c); });  // holes wind clockwise: negative
   return area;
 }
 
@@ -171,6 +174,13 @@ struct Enclosure {
   std::set<int> by;  ///< contacts whose solid side faces f
 };
 
+/// Whether contact c, which runs along h, has its solid side towards h's face (on h's left).
+bool solidTowards(Halfedge h, const ContactLine2& c) {
+  const glm::dvec2 dir = approx(h->target()->point()) - approx(h->source()->point());
+  bool faceOnLeft = glm::dot(dir, c.b - c.a) > 0;  // the face is left of h
+  return c.solid != 0 && (c.solid > 0) == faceOnLeft;
+}
+
 /// Notes the edges of one boundary cycle of f: an edge closes the face when a contact's
 /// solid side faces it, or when it is one of the polygon's edges and some surface stands on
 /// it.
@@ -179,19 +189,11 @@ void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enc
   do {
     if (h->twin()->face() == f) continue;  // a line inside the face
     bool ring = false, standing = false, towards = false;
-    const glm::dvec2 dir = approx(h->target()->point()) - approx(h->source()->point());
     for (int data : h->curve().data()) {
-      if (data == kRingEdge) {
-        ring = true;
-        continue;
-      }
-      const ContactLine2& c = contacts[size_t(data)];
+      ring = ring || data == kRingEdge;
+      if (data == kRingEdge) continue;
       standing = true;
-      bool faceOnLeft = glm::dot(dir, c.b - c.a) > 0;  // the face is left of h
-      if (c.solid != 0 && (c.solid > 0) == faceOnLeft) {
-        towards = true;
-        e.by.insert(data);
-      }
+      if (solidTowards(h, contacts[size_t(data)])) towards = true, e.by.insert(data);
     }
     e.solid = e.solid || towards;
     e.closed = e.closed && (towards || (ring && standing));
@@ -201,9 +203,7 @@ void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enc
 /// How the contacts enclose face f.
 Enclosure enclosureOf(Face f, const std::vector<ContactLine2>& contacts) {
   Enclosure e;
-  if (f->has_outer_ccb()) noteCycle(f, f->outer_ccb(), contacts, e);
-  for (auto hole = f->inner_ccbs_begin(); hole != f->inner_ccbs_end(); ++hole)
-    noteCycle(f, *hole, contacts, e);
+  forEachCycle(f, [&](Ccb c) { noteCycle(f, c, contacts, e); });
   return e;
 }
 
@@ -237,6 +237,13 @@ int idAt(const IdMap& idOf, const EK::Point_2& p) {
 /// its right.
 bool keptBoundary(KeptFaces& kept, Halfedge h) { return kept[h->face()] && !kept[h->twin()->face()]; }
 
+/// The kept boundary edge after e, around e's target through the kept faces.
+Halfedge nextKeptBoundary(KeptFaces& kept, Halfedge e) {
+  Halfedge next = e->next();
+  while (!keptBoundary(kept, next)) next = next->twin()->next();
+  return next;
+}
+
 /// Adds the ring of kept boundary edges through h, chained around their end points through
 /// the kept faces, to out; marks its edges done.
 void addKeptRing(KeptFaces& kept, const IdMap& idOf, Halfedge h, std::set<Halfedge>& done,
@@ -251,9 +258,7 @@ void addKeptRing(KeptFaces& kept, const IdMap& idOf, Halfedge h, std::set<Halfed
     ids.push_back(idAt(idOf, e->source()->point()));
     const auto& data = e->curve().data();
     contact.push_back(std::find(data.begin(), data.end(), kRingEdge) == data.end());
-    Halfedge next = e->next();
-    while (!keptBoundary(kept, next)) next = next->twin()->next();
-    e = next;
+    e = nextKeptBoundary(kept, e);
   } while (e != h);
   out.kept.rings.push_back(std::move(ring));
   out.kept.ids.push_back(std::move(ids));

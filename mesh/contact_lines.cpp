@@ -25,17 +25,27 @@ struct Contact3 {
   int aId = -1, bId = -1;
 };
 
+/// Edge k of one of the piece's rings, in the piece's frame.
+std::pair<glm::dvec2, glm::dvec2> projectedEdge(const PointTable& table, const Piece& piece,
+                                                const std::vector<int>& ring, size_t k) {
+  return {piece.frame.project(table[ring[k]]), piece.frame.project(table[ring[(k + 1) % ring.size()]])};
+}
+
+/// Whether the edge from a to b crosses the ray from x along +u (even-odd rule).
+bool crossesRay(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& x) {
+  const glm::dvec2 d = b - a;
+  return (a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * d.x / d.y;
+}
+
 /// True when q, a point of s's plane, lies inside piece s or within `tolerance` of its border.
 bool insideOrOn(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
   const glm::dvec2 x = s.frame.project(q);
   bool inside = false;
   for (const auto& ring : s.rings)
     for (size_t k = 0; k < ring.size(); ++k) {
-      const glm::dvec2 a = s.frame.project(table[ring[k]]);
-      const glm::dvec2 b = s.frame.project(table[ring[(k + 1) % ring.size()]]);
+      const auto [a, b] = projectedEdge(table, s, ring, k);
       if (segmentDistance(x, a, b) <= tolerance) return true;
-      const glm::dvec2 d = b - a;
-      if ((a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * d.x / d.y) inside = !inside;
+      if (crossesRay(a, b, x)) inside = !inside;
     }
   return inside;
 }
@@ -59,6 +69,13 @@ std::vector<std::pair<glm::dvec3, int>> pointsInPlane(const PointTable& table, c
         on.push_back({p + (q - p) * (dp / (dp - dq)), -1});
     }
   return on;
+}
+
+/// Sorts the points along the direction `along`.
+void sortAlong(std::vector<std::pair<glm::dvec3, int>>& on, const glm::dvec3& along) {
+  std::sort(on.begin(), on.end(), [&](const auto& x, const auto& y) {
+    return glm::dot(along, x.first) < glm::dot(along, y.first);
+  });
 }
 
 /// The stretches between consecutive points (sorted along the line) whose middles lie in s,
@@ -92,10 +109,7 @@ std::vector<Contact3> contactsOf(const PointTable& table, const Piece& r, bool r
   auto on = pointsInPlane(table, r, s, tolerance, lo, hi);
   const bool lit = hi > tolerance || (rTwoSided && lo < -tolerance);
   if (!lit || lo > tolerance || hi < -tolerance || on.size() < 2) return {};
-  const glm::dvec3 along = glm::normalize(glm::cross(nr, ns));
-  std::sort(on.begin(), on.end(), [&](const auto& x, const auto& y) {
-    return glm::dot(along, x.first) < glm::dot(along, y.first);
-  });
+  sortAlong(on, glm::normalize(glm::cross(nr, ns)));
   return stretchesIn(table, s, on, tolerance);
 }
 
@@ -121,6 +135,13 @@ std::vector<Box> paddedBoxes(const PointTable& table, const std::vector<Piece>& 
   return boxes;
 }
 
+/// The box around the boxes.
+Box enclosing(const std::vector<Box>& boxes) {
+  Box all;
+  for (const Box& b : boxes) all.lo = glm::min(all.lo, b.lo), all.hi = glm::max(all.hi, b.hi);
+  return all;
+}
+
 /// The pieces' boxes in a hash over the scene's box cut into cells × cells × cells cells
 /// (each axis divided alike, so cells are boxes, not cubes): the hash works in those grid
 /// coordinates. Candidates come cell by cell in x, y, z order, which orders the contact lines
@@ -129,8 +150,7 @@ class PieceBoxes {
  public:
   explicit PieceBoxes(const std::vector<Box>& boxes)
       : boxes_(boxes), cells_(std::clamp(int(2 * std::cbrt(double(boxes.size()))), 1, 64)) {
-    Box scene;
-    for (const Box& b : boxes) scene.lo = glm::min(scene.lo, b.lo), scene.hi = glm::max(scene.hi, b.hi);
+    const Box scene = enclosing(boxes);
     lo_ = scene.lo;
     cell_ = glm::max((scene.hi - scene.lo) / double(cells_), glm::dvec3(1e-300));
     for (size_t p = 0; p < boxes.size(); ++p) hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
@@ -190,14 +210,18 @@ void takeIfNearer(const glm::dvec3& p, int id, const glm::dvec3& x, double& best
   if (glm::length(p - x) <= best) best = glm::length(p - x), found = id;
 }
 
+/// Takes the corner of piece p nearest to x if it is no farther than `best`.
+void nearestCorner(const Context& cx, size_t p, const glm::dvec3& x, double& best, int& found) {
+  for (const auto& ring : cx.original[p].rings)
+    for (int id : ring) takeIfNearer(cx.table[id], id, x, best, found);
+}
+
 /// The id of a new point x: a corner of piece r or s, or a point made earlier, within the
 /// tolerance (so that both pieces at a contact share their points); else x, made now.
 int snap(Context& cx, const glm::dvec3& x, size_t r, size_t s) {
   int found = -1;
   double best = cx.tolerance;
-  for (size_t p : {r, s})
-    for (const auto& ring : cx.original[p].rings)
-      for (int id : ring) takeIfNearer(cx.table[id], id, x, best, found);
+  for (size_t p : {r, s}) nearestCorner(cx, p, x, best, found);
   const glm::dvec3 pad(cx.tolerance);
   cx.made.visit(x - pad, x + pad, [&](int id) { takeIfNearer(cx.table[id], id, x, best, found); });
   if (found >= 0) return found;
@@ -257,8 +281,7 @@ bool alongEdge(const Context& cx, size_t r, const ContactLine2& line) {
   const Piece& piece = cx.original[r];
   for (const auto& ring : piece.rings)
     for (size_t k = 0; k < ring.size(); ++k) {
-      const glm::dvec2 a = piece.frame.project(cx.table[ring[k]]);
-      const glm::dvec2 b = piece.frame.project(cx.table[ring[(k + 1) % ring.size()]]);
+      const auto [a, b] = projectedEdge(cx.table, piece, ring, k);
       if (segmentDistance(line.a, a, b) <= cx.tolerance &&
           segmentDistance(line.b, a, b) <= cx.tolerance)
         return true;
@@ -310,6 +333,16 @@ void addAcrossEdges(Context& cx, size_t r, const ContactCut& cut, size_t k,
     }
 }
 
+/// Adds kept line k of the cut to the piece's lines and to `across`.
+void keepLine(Context& cx, size_t r, const ContactCut& cut, size_t k, Piece& piece,
+              std::set<std::pair<int, int>>& across) {
+  int p = idOf(cx, r, cut.kept.lines[k][0], cut.kept.lineIds[k][0]);
+  int q = idOf(cx, r, cut.kept.lines[k][1], cut.kept.lineIds[k][1]);
+  if (p == q) return;
+  piece.lines.push_back({p, q});
+  across.insert(std::minmax(p, q));
+}
+
 /// Piece r becomes what the cut kept: its rings, and the contact lines inside as lines
 /// (added to `across` too).
 void keepCut(Context& cx, size_t r, const ContactCut& cut, Piece& piece,
@@ -320,14 +353,7 @@ void keepCut(Context& cx, size_t r, const ContactCut& cut, Piece& piece,
     addAcrossEdges(cx, r, cut, k, across);
     if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
   }
-  for (size_t k = 0; k < cut.kept.lines.size(); ++k) {
-    int p = idOf(cx, r, cut.kept.lines[k][0], cut.kept.lineIds[k][0]);
-    int q = idOf(cx, r, cut.kept.lines[k][1], cut.kept.lineIds[k][1]);
-    if (p != q) {
-      piece.lines.push_back({p, q});
-      across.insert(std::minmax(p, q));
-    }
-  }
+  for (size_t k = 0; k < cut.kept.lines.size(); ++k) keepLine(cx, r, cut, k, piece, across);
 }
 
 /// The signed area of the polygon's rings (counter-clockwise positive).
@@ -339,6 +365,13 @@ double ringsArea(const Polygon2& poly) {
   return area;
 }
 
+/// The surfaces the contact lines `by` come from, sorted, each once.
+std::vector<int> surfacesOf(const std::vector<int>& by, const std::vector<int>& from) {
+  std::set<int> surfaces;
+  for (int k : by) surfaces.insert(from[size_t(k)]);
+  return {surfaces.begin(), surfaces.end()};
+}
+
 /// Records the parts of a piece of surface `surface` (`poly` before the cut) that the cut
 /// left out, slivers apart, each with the surfaces that enclosed it.
 void recordCutAway(const ContactCut& cut, const Polygon2& poly, int surface,
@@ -346,11 +379,7 @@ void recordCutAway(const ContactCut& cut, const Polygon2& poly, int surface,
   const double pieceArea = ringsArea(poly);
   for (const auto& removed : cut.removed) {
     if (removed.area <= kNegligibleCut * std::abs(pieceArea)) continue;  // a sliver between lines
-    CutAway c{surface, removed.area, {}};
-    for (int k : removed.by) c.enclosedBy.push_back(from[size_t(k)]);
-    std::sort(c.enclosedBy.begin(), c.enclosedBy.end());
-    c.enclosedBy.erase(std::unique(c.enclosedBy.begin(), c.enclosedBy.end()), c.enclosedBy.end());
-    cutAway.push_back(std::move(c));
+    cutAway.push_back({surface, removed.area, surfacesOf(removed.by, from)});
   }
 }
 

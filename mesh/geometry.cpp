@@ -24,6 +24,16 @@ glm::dvec2 PlaneFrame::project(const glm::dvec3& p) const {
 
 glm::dvec3 PlaneFrame::lift(const glm::dvec2& q) const { return origin + q.x * u + q.y * v; }
 
+namespace {
+
+/// An axis far from parallel to the unit normal n: u is taken across it, for a
+/// well-conditioned frame.
+glm::dvec3 crossAxis(const glm::dvec3& n) {
+  return std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : std::abs(n.y) < 0.6 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+}
+
+}  // namespace
+
 PlaneFrame planeFrame(const Ring& ring) {
   PlaneFrame f;
   f.origin = glm::dvec3(0.0);
@@ -32,11 +42,7 @@ PlaneFrame planeFrame(const Ring& ring) {
   glm::dvec3 n = newellNormal(ring);
   double len = glm::length(n);
   f.normal = len > 0 ? n / len : glm::dvec3(0, 0, 1);
-  // u along the axis least aligned with the normal, for a well-conditioned frame.
-  glm::dvec3 a = std::abs(f.normal.x) < 0.6 ? glm::dvec3(1, 0, 0)
-                 : std::abs(f.normal.y) < 0.6 ? glm::dvec3(0, 1, 0)
-                                              : glm::dvec3(0, 0, 1);
-  f.u = glm::normalize(glm::cross(a, f.normal));
+  f.u = glm::normalize(glm::cross(crossAxis(f.normal), f.normal));
   f.v = glm::cross(f.normal, f.u);
   return f;
 }

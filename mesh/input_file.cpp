@@ -20,6 +20,26 @@ std::string kindOf(mode_t mode) {
 
 std::string mebibytes(uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
+/// An open input file, with what it should be (for messages) and whether it is text.
+struct Source {
+  std::ifstream& in;
+  const std::string& path;
+  const std::string& what;
+  bool text;
+};
+
+/// Reads on until `bytes` holds upTo bytes; a text file may hold no NUL byte.
+void readMore(const Source& s, std::string& bytes, size_t upTo) {
+  const size_t from = bytes.size();
+  bytes.resize(upTo);
+  s.in.read(bytes.data() + from, std::streamsize(upTo - from));
+  if (size_t(s.in.gcount()) != upTo - from) throw inputError(s.path, s.what, "a read error");
+  if (s.text)
+    if (const void* nul = std::memchr(bytes.data() + from, '\0', upTo - from))
+      throw inputError(s.path, s.what + " (text)", "a NUL byte at offset " +
+                                                       std::to_string(static_cast<const char*>(nul) - bytes.data()));
+}
+
 }  // namespace
 
 uint64_t inputFileSize(const std::string& path, const std::string& what, uint64_t maxBytes) {
@@ -37,20 +57,11 @@ std::string readInputFile(const std::string& path, const std::string& what, uint
   const uint64_t size = inputFileSize(path, what, maxBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw inputError(path, what, "a file that cannot be opened");
-  auto readMore = [&](std::string& bytes, size_t upTo) {
-    const size_t from = bytes.size();
-    bytes.resize(upTo);
-    in.read(bytes.data() + from, std::streamsize(upTo - from));
-    if (size_t(in.gcount()) != upTo - from) throw inputError(path, what, "a read error");
-    if (text)
-      if (const void* nul = std::memchr(bytes.data() + from, '\0', upTo - from))
-        throw inputError(path, what + " (text)", "a NUL byte at offset " +
-                                                     std::to_string(static_cast<const char*>(nul) - bytes.data()));
-  };
+  const Source source{in, path, what, text};
   std::string bytes;
-  readMore(bytes, size_t(std::min<uint64_t>(size, kInputHeadBytes)));
+  readMore(source, bytes, size_t(std::min<uint64_t>(size, kInputHeadBytes)));
   if (checkHead) checkHead(bytes);
-  readMore(bytes, size_t(size));
+  readMore(source, bytes, size_t(size));
   return bytes;
 }
 

@@ -46,51 +46,75 @@ bool finiteNumber(const std::string& word, double& v) {
   return !word.empty() && *end == '\0' && std::isfinite(v);
 }
 
-/// Checks the lines tinyobjloader would read leniently (it turns "nan" into 0 and clamps
-/// indices): numbers after `v` and the colour keys of MTL are finite, and every face index
-/// names a vertex defined before it (1-based, or negative counting back), line by line.
-void checkObjText(std::string text, const std::string& path, bool material) {
-  // Lines end at LF, CRLF or (old Mac files) CR alone.
+/// The text with every line ending (LF, CRLF or, in old Mac files, CR alone) as LF.
+std::string withLfLineEnds(const std::string& text) {
   std::string lf;
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] != '\r') lf += text[i];
     else if (i + 1 >= text.size() || text[i + 1] != '\n') lf += '\n';
-  text.swap(lf);
-  std::istringstream lines(text);
+  return lf;
+}
+
+/// The rest of the line after `key`: finite numbers.
+void checkNumbers(std::istringstream& words, const std::string& key, const std::string& where) {
+  std::string word;
+  for (double v; words >> word;)
+    if (!finiteNumber(word, v)) throw inputError(where, "finite numbers after '" + key + "'", "'" + word + "'");
+}
+
+/// The rest of a face (line, point) statement: indices of the `vertices` defined so far
+/// (1-based, or negative counting back), at most kMaxObjFaceVertices of them.
+void checkFaceIndices(std::istringstream& words, long long vertices, const std::string& where) {
+  int corners = 0;
+  for (std::string word; words >> word; ++corners) {
+    const std::string first = word.substr(0, word.find('/'));
+    char* end = nullptr;
+    errno = 0;
+    const long long i = std::strtoll(first.c_str(), &end, 10);
+    const bool inRange = i > 0 ? i <= vertices : i < 0 && uint64_t(-(i + 1)) < uint64_t(vertices);
+    if (first.empty() || *end != '\0' || errno == ERANGE || !inRange)
+      throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
+                                  std::to_string(vertices) + ", counting back)", "'" + first + "'");
+  }
+  // tinyobjloader counts a face's corners in one byte.
+  if (corners > kMaxObjFaceVertices)
+    throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
+                     std::to_string(corners));
+}
+
+/// Checks the lines tinyobjloader would read leniently (it turns "nan" into 0 and clamps
+/// indices): numbers after `v` and the colour keys of MTL are finite, and every face index
+/// names a vertex defined before it (1-based, or negative counting back), line by line.
+void checkObjText(const std::string& text, const std::string& path, bool material) {
+  std::istringstream lines(withLfLineEnds(text));
   std::string line;
   long long vertices = 0;
   for (int n = 1; std::getline(lines, line); ++n) {
     std::istringstream words(line.substr(0, line.find('#')));
-    std::string key, word;
+    std::string key;
     if (!(words >> key)) continue;
     const std::string where = path + ": line " + std::to_string(n);
     // The colours we take (Kd, Ke) and the vertex positions: finite numbers (an RGB colour;
     // tinyobjloader reads neither spectral nor xyz colours).
-    const bool numbers = material ? (key == "Kd" || key == "Ke") : key == "v";
-    if (numbers) {
-      for (double v; words >> word;)
-        if (!finiteNumber(word, v)) throw inputError(where, "finite numbers after '" + key + "'", "'" + word + "'");
+    if (material ? (key == "Kd" || key == "Ke") : key == "v") {
+      checkNumbers(words, key, where);
       vertices += key == "v";
-      continue;
+    } else if (!material && (key == "f" || key == "l" || key == "p")) {
+      checkFaceIndices(words, vertices, where);
     }
-    if (material || (key != "f" && key != "l" && key != "p")) continue;
-    int corners = 0;
-    while (words >> word) {
-      const std::string first = word.substr(0, word.find('/'));
-      char* end = nullptr;
-      errno = 0;
-      const long long i = std::strtoll(first.c_str(), &end, 10);
-      const bool inRange = i > 0 ? i <= vertices : i < 0 && uint64_t(-(i + 1)) < uint64_t(vertices);
-      if (first.empty() || *end != '\0' || errno == ERANGE || !inRange)
-        throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
-                                    std::to_string(vertices) + ", counting back)", "'" + first + "'");
-      ++corners;
-    }
-    // tinyobjloader counts a face's corners in one byte.
-    if (corners > kMaxObjFaceVertices)
-      throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
-                       std::to_string(corners));
   }
+}
+
+/// Appends the MTL file `name` (relative to the OBJ at `path`, named at `where`) to `text`,
+/// unless it was read already.
+void addMaterialFile(const std::string& path, const std::string& name, const std::string& where,
+                     std::set<std::string>& read, std::string& text) {
+  const std::string file = (std::filesystem::path(path).parent_path() / name).string();
+  if (!read.insert(file).second) return;  // each file once, however often it is named
+  const std::string mtl = readInputFile(file, "the material file (MTL) that " + where + " names", kMaxMaterialBytes);
+  checkObjText(mtl, file, true);
+  text += mtl + "\n";
+  if (text.size() > kMaxMaterialBytes) throw inputError(where, "material files of at most 64 MiB in all", "more");
 }
 
 /// The text of every MTL file the OBJ names (`mtllib`), each read as an input file: tinyobj
@@ -99,21 +123,12 @@ std::string materialText(const std::string& obj, const std::string& path) {
   std::istringstream lines(obj);
   std::string line, text;
   std::set<std::string> read;
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   for (int n = 1; std::getline(lines, line); ++n) {
     std::istringstream words(line);
     std::string word;
     if (!(words >> word) || word != "mtllib") continue;
-    for (std::string name; words >> name;) {
-      const std::string file = (folder / name).string();
-      if (!read.insert(file).second) continue;  // each file once, however often it is named
-      const std::string what = "the material file (MTL) that " + path + ": line " + std::to_string(n) + " names";
-      const std::string mtl = readInputFile(file, what, kMaxMaterialBytes);
-      checkObjText(mtl, file, true);
-      text += mtl + "\n";
-      if (text.size() > kMaxMaterialBytes)
-        throw inputError(path + ": line " + std::to_string(n), "material files of at most 64 MiB in all", "more");
-    }
+    const std::string where = path + ": line " + std::to_string(n);
+    for (std::string name; words >> name;) addMaterialFile(path, name, where, read, text);
   }
   return text;
 }
@@ -135,47 +150,71 @@ size_t objVertex(const tinyobj::index_t& index, size_t vertices, const std::stri
   return size_t(vi);
 }
 
-std::vector<MeshFileGroup> readObj(const std::string& path) {
-  const std::string obj = readInputFile(path, "a Wavefront OBJ file");
-  checkObjText(obj, path, false);
+/// The OBJ text parsed by tinyobjloader, with the MTL files it names; polygons stay polygons.
+void parseObj(const std::string& obj, const std::string& path, tinyobj::ObjReader& reader) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // polygons stay polygons: the mesher triangulates them well
-  tinyobj::ObjReader reader;
   if (!reader.ParseFromString(obj, materialText(obj, path), config)) {
     std::string why = trimmed(reader.Error());
     throw inputError(path, "a Wavefront OBJ file", "a parse error: " + why);
   }
-  const auto& attrib = reader.GetAttrib();
-  const size_t vertices = attrib.vertices.size() / 3;
+}
+
+/// Every vertex coordinate is finite.
+void checkFiniteVertices(const tinyobj::attrib_t& attrib, const std::string& path) {
   for (size_t i = 0; i < attrib.vertices.size(); ++i)
     if (!std::isfinite(attrib.vertices[i]))
       throw inputError(path + ": vertex " + std::to_string(i / 3 + 1), "finite coordinates",
                        std::to_string(attrib.vertices[i]));
-  const auto& materials = reader.GetMaterials();
-  std::map<int, MeshFileGroup> groups;  // by material id, -1 = none
-  for (const auto& shape : reader.GetShapes()) {
-    size_t corners = 0;
-    for (size_t n : shape.mesh.num_face_vertices) corners += n;
-    if (corners != shape.mesh.indices.size())
-      throw inputError(path + ": object " + shape.name, "faces whose corners add up to their indices",
-                       std::to_string(corners) + " corners for " + std::to_string(shape.mesh.indices.size()) + " indices");
-    size_t offset = 0;
-    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      const std::string face = path + ": " + (shape.name.empty() ? "" : "object " + shape.name + ": ") +
-                               "face " + std::to_string(f + 1);
-      const size_t n = shape.mesh.num_face_vertices[f];
-      if (offset + n > shape.mesh.indices.size()) throw inputError(face, "its vertex indices", "fewer");
-      Polygon polygon;
-      for (size_t k = 0; k < n; ++k) {
-        const size_t vi = objVertex(shape.mesh.indices[offset + k], vertices, face);
-        polygon.outer.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
-      }
-      offset += n;
-      int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      if (mat >= int(materials.size())) mat = -1;
-      groups[mat].faces.push_back(std::move(polygon));
-    }
+}
+
+/// The shape's face corners add up to its indices.
+void checkCorners(const tinyobj::shape_t& shape, const std::string& path) {
+  size_t corners = 0;
+  for (size_t n : shape.mesh.num_face_vertices) corners += n;
+  if (corners != shape.mesh.indices.size())
+    throw inputError(path + ": object " + shape.name, "faces whose corners add up to their indices",
+                     std::to_string(corners) + " corners for " + std::to_string(shape.mesh.indices.size()) + " indices");
+}
+
+/// "<path>: object <name>: face <f + 1>" (the object left out when it has no name).
+std::string faceWhere(const tinyobj::shape_t& shape, size_t f, const std::string& path) {
+  return path + ": " + (shape.name.empty() ? "" : "object " + shape.name + ": ") + "face " + std::to_string(f + 1);
+}
+
+/// Face f of the shape, whose corners start at index `offset`, as a polygon.
+Polygon objFace(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, size_t f,
+                size_t offset, const std::string& path) {
+  const std::string face = faceWhere(shape, f, path);
+  const size_t n = shape.mesh.num_face_vertices[f];
+  if (offset + n > shape.mesh.indices.size()) throw inputError(face, "its vertex indices", "fewer");
+  const size_t vertices = attrib.vertices.size() / 3;
+  Polygon polygon;
+  for (size_t k = 0; k < n; ++k) {
+    const size_t vi = objVertex(shape.mesh.indices[offset + k], vertices, face);
+    polygon.outer.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
   }
+  return polygon;
+}
+
+/// Adds the shape's faces to the groups of their materials (-1: none, or an unknown one).
+void addShapeFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, int materials,
+                   const std::string& path, std::map<int, MeshFileGroup>& groups) {
+  checkCorners(shape, path);
+  size_t offset = 0;
+  for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+    Polygon polygon = objFace(shape, attrib, f, offset, path);
+    offset += shape.mesh.num_face_vertices[f];
+    int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+    if (mat >= materials) mat = -1;
+    groups[mat].faces.push_back(std::move(polygon));
+  }
+}
+
+/// The groups in material order, each named with its MTL material's name and colours.
+std::vector<MeshFileGroup> namedGroups(std::map<int, MeshFileGroup>& groups,
+                                       const std::vector<tinyobj::material_t>& materials,
+                                       const std::string& path) {
   std::vector<MeshFileGroup> out;
   for (auto& [id, group] : groups) {
     if (id >= 0) {
@@ -187,6 +226,18 @@ std::vector<MeshFileGroup> readObj(const std::string& path) {
     out.push_back(std::move(group));
   }
   return out;
+}
+
+std::vector<MeshFileGroup> readObj(const std::string& path) {
+  const std::string obj = readInputFile(path, "a Wavefront OBJ file");
+  checkObjText(obj, path, false);
+  tinyobj::ObjReader reader;
+  parseObj(obj, path, reader);
+  checkFiniteVertices(reader.GetAttrib(), path);
+  std::map<int, MeshFileGroup> groups;  // by material id, -1 = none
+  for (const auto& shape : reader.GetShapes())
+    addShapeFaces(shape, reader.GetAttrib(), int(reader.GetMaterials().size()), path, groups);
+  return namedGroups(groups, reader.GetMaterials(), path);
 }
 
 /// A PLY mesh: its vertices' x, y, z and its faces.
@@ -239,48 +290,74 @@ class OffWords {
   int line_ = 0;
 };
 
-/// An OFF file (Geomview): "OFF", the vertex, face and edge counts, x y z per vertex, then
-/// "n i1 … in" per face. Counts are checked against the file's size before anything else.
-std::vector<MeshFileGroup> readOff(const std::string& path) {
-  const std::string text = readInputFile(path, "an OFF file");
-  OffWords words(text, path);
-  // OFF, with the optional prefixes for texture coordinates, colours and normals after each
-  // vertex (skipped); 4OFF and nOFF (homogeneous, n-dimensional) are not 3D meshes.
+/// The keyword: OFF, with the optional prefixes for texture coordinates, colours and normals
+/// after each vertex (skipped); 4OFF and nOFF (homogeneous, n-dimensional) are not 3D meshes.
+void checkOffKeyword(OffWords& words) {
   std::string magic;
   static const std::set<std::string> keywords = {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
   if (!words.next(magic) || !keywords.count(magic))
     throw inputError(words.where(), "the 'OFF' keyword (or COFF, NOFF, CNOFF, STOFF, STCOFF, STNOFF, STCNOFF)",
                      magic.empty() ? "nothing" : "'" + magic + "'");
-  // Every vertex takes at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n").
-  const uint64_t vertices = words.count("a vertex count", text.size() / 6);
-  const uint64_t faces = words.count("a face count", text.size() / 8);
-  words.count("an edge count", UINT64_MAX >> 12);
+}
+
+/// The vertices' positions, one a line.
+std::vector<glm::dvec3> readOffPoints(OffWords& words, uint64_t vertices) {
   std::vector<glm::dvec3> points(vertices);
   for (auto& p : points) {
     p = {words.number("a vertex x"), words.number("a vertex y"), words.number("a vertex z")};
     words.skipLine();  // colours or normals after the position are not ours
   }
+  return points;
+}
+
+/// One face line: its vertex count and the indices of its vertices among `points`.
+Polygon readOffFace(OffWords& words, const std::vector<glm::dvec3>& points) {
+  const uint64_t n = words.count("a face's vertex count", kMaxPlyFaceVertices);
+  if (points.empty() && n > 0) throw inputError(words.where(), "a face of the file's vertices", "a file without vertices");
+  Polygon face;
+  for (uint64_t k = 0; k < n; ++k) face.outer.push_back(points[words.count("a vertex index", points.size() - 1)]);
+  words.skipLine();  // a face colour may follow
+  return face;
+}
+
+/// An OFF file (Geomview): "OFF", the vertex, face and edge counts, x y z per vertex, then
+/// "n i1 … in" per face. Counts are checked against the file's size before anything else.
+std::vector<MeshFileGroup> readOff(const std::string& path) {
+  const std::string text = readInputFile(path, "an OFF file");
+  OffWords words(text, path);
+  checkOffKeyword(words);
+  // Every vertex takes at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n").
+  const uint64_t vertices = words.count("a vertex count", text.size() / 6);
+  const uint64_t faces = words.count("a face count", text.size() / 8);
+  words.count("an edge count", UINT64_MAX >> 12);
+  const std::vector<glm::dvec3> points = readOffPoints(words, vertices);
   MeshFileGroup group;
-  for (uint64_t f = 0; f < faces; ++f) {
-    const uint64_t n = words.count("a face's vertex count", kMaxPlyFaceVertices);
-    if (vertices == 0 && n > 0) throw inputError(words.where(), "a face of the file's vertices", "a file without vertices");
-    Polygon face;
-    for (uint64_t k = 0; k < n; ++k) face.outer.push_back(points[words.count("a vertex index", vertices - 1)]);
-    words.skipLine();  // a face colour may follow
-    group.faces.push_back(std::move(face));
-  }
+  for (uint64_t f = 0; f < faces; ++f) group.faces.push_back(readOffFace(words, points));
   return {std::move(group)};
 }
 
-}  // namespace
-
-std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
+/// The path ends in .obj, .ply or .off (any case) and names a file: its extension, lower case.
+std::string checkMeshPath(const std::string& path, const std::string& where) {
   const std::string ext = lowerExtension(path);
   if (ext != "obj" && ext != "ply" && ext != "off")
     throw inputError(where, "a mesh file ending in .obj, .ply or .off", path);
   std::error_code missing;
   if (!std::filesystem::exists(path, missing))
     throw inputError(where, "a readable mesh file", "no file at " + path + (missing ? " (" + missing.message() + ")" : ""));
+  return ext;
+}
+
+/// The faces of every group.
+size_t faceCount(const std::vector<MeshFileGroup>& groups) {
+  size_t faces = 0;
+  for (const auto& g : groups) faces += g.faces.size();
+  return faces;
+}
+
+}  // namespace
+
+std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
+  const std::string ext = checkMeshPath(path, where);
   std::vector<MeshFileGroup> groups;
   try {
     inputFileSize(path, "a readable mesh file");  // a FIFO or a folder: say so before reading
@@ -288,9 +365,7 @@ std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::stri
   } catch (const InputError& e) {
     throw InputError(where + ": " + e.what());  // the scene's place, then the file's
   }
-  size_t faces = 0;
-  for (const auto& g : groups) faces += g.faces.size();
-  if (faces == 0)
+  if (faceCount(groups) == 0)
     throw inputError(where + ": " + path, "a mesh file with faces",
                      "none that parse (a damaged or empty file)");
   return groups;

@@ -25,24 +25,25 @@ class Assembler {
 
   /// Adds every side of surface s: its pieces' patches.
   void addSurface(int s, const std::vector<int>& pieces) {
-    for (int side = 0; side < (scene_.surfaces[size_t(s)].twoSided ? 2 : 1); ++side) {
-      vertexOf_.clear();
-      for (int piece : pieces)
-        for (const auto& group : patchesOfPiece_[size_t(piece)]) addPatch(s, side, piece, group);
-    }
+    for (int side = 0; side < (scene_.surfaces[size_t(s)].twoSided ? 2 : 1); ++side) addSide(s, side, pieces);
   }
 
   /// Faces on non-manifold edges that got their own vertices.
   int nonManifold() const { return nonManifold_; }
 
  private:
+  /// Adds one side of surface s, with vertices of its own.
+  void addSide(int s, int side, const std::vector<int>& pieces) {
+    vertexOf_.clear();
+    for (int piece : pieces)
+      for (const auto& group : patchesOfPiece_[size_t(piece)]) addPatch(s, side, piece, group);
+  }
+
   /// The vertex of point `id` on the current surface side, made when new.
   TriMesh::VertexHandle vertex(int id) {
-    auto it = vertexOf_.find(id);
-    if (it != vertexOf_.end()) return it->second;
-    auto v = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[id]));
-    vertexOf_[id] = v;
-    return v;
+    auto [it, added] = vertexOf_.try_emplace(id);
+    if (added) it->second = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[id]));
+    return it->second;
   }
 
   /// The face on points t (ids), sharing the side's vertices; on non-manifold input (mesh
@@ -133,13 +134,16 @@ std::vector<std::vector<std::vector<int>>> patchesOfPieces(const PointTable& tab
   return patches;
 }
 
-/// Vertex normals: area-weighted mean of the adjacent element normals.
+/// A vertex normal: the area-weighted mean of the adjacent element normals.
+OpenMesh::Vec3d vertexNormal(const PatchMesh& out, TriMesh::VertexHandle v) {
+  OpenMesh::Vec3d n(0, 0, 0);
+  for (auto f : out.mesh.vf_range(v)) n += out.mesh.normal(f) * out.area(f.idx());
+  return n.normalized();
+}
+
+/// Every vertex's normal.
 void setVertexNormals(PatchMesh& out) {
-  for (auto v : out.mesh.vertices()) {
-    OpenMesh::Vec3d n(0, 0, 0);
-    for (auto f : out.mesh.vf_range(v)) n += out.mesh.normal(f) * out.area(f.idx());
-    out.mesh.set_normal(v, n.normalized());
-  }
+  for (auto v : out.mesh.vertices()) out.mesh.set_normal(v, vertexNormal(out, v));
 }
 
 }  // namespace

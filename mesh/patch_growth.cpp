@@ -71,6 +71,13 @@ bool fits(const PointTable& table, const std::array<int, 3>& t, const std::vecto
   return true;
 }
 
+/// The hull corners of the patch with triangle t added.
+std::vector<int> withTriangle(const PointTable& table, const PlaneFrame& frame, std::vector<int> hull,
+                              const std::array<int, 3>& t) {
+  hull.insert(hull.end(), t.begin(), t.end());
+  return convexHull(table, frame, std::move(hull));
+}
+
 /// One patch grown from `seed` over free triangles, nearest to the seed first; marks them
 /// taken.
 std::vector<int> growPatch(const PointTable& table, const PlaneFrame& frame,
@@ -88,13 +95,21 @@ std::vector<int> growPatch(const PointTable& table, const PlaneFrame& frame,
     if (!fits(table, triangles[k], hull, maxDiameter)) continue;
     taken[k] = true;
     patch.push_back(k);
-    hull.insert(hull.end(), triangles[k].begin(), triangles[k].end());
-    hull = convexHull(table, frame, std::move(hull));
+    hull = withTriangle(table, frame, std::move(hull), triangles[k]);
     for (int m : g.neighbours[k])
       if (!taken[m] && queued.insert(m).second)
         frontier.push({glm::length(g.centre[m] - g.centre[seed]), m});
   }
   return patch;
+}
+
+/// The points (ids) projected on the frame's plane, in sweep order.
+std::vector<std::pair<glm::dvec2, int>> sweptProjections(const PointTable& table, const PlaneFrame& frame,
+                                                         const std::vector<int>& ids) {
+  std::vector<std::pair<glm::dvec2, int>> pts;
+  for (int id : ids) pts.push_back({frame.project(table[id]), id});
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return sweepLess(a.first, b.first); });
+  return pts;
 }
 
 }  // namespace
@@ -103,10 +118,7 @@ std::vector<int> convexHull(const PointTable& table, const PlaneFrame& frame, st
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   if (ids.size() < 3) return ids;
-  std::vector<std::pair<glm::dvec2, int>> pts;
-  for (int id : ids) pts.push_back({frame.project(table[id]), id});
-  std::sort(pts.begin(), pts.end(),
-            [](const auto& a, const auto& b) { return sweepLess(a.first, b.first); });
+  const auto pts = sweptProjections(table, frame, ids);
   std::vector<std::pair<glm::dvec2, int>> hull(2 * pts.size());
   size_t k = 0;
   for (size_t i = 0; i < pts.size(); ++i) {  // lower chain

@@ -5,6 +5,8 @@
 // into patches) and patch_assembly (all of it into the OpenMesh mesh).
 #include "mesh/patch_mesh.h"
 
+#include <algorithm>
+
 #include "mesh/boundary_agreement.h"
 #include "mesh/contact_lines.h"
 #include "mesh/error.h"
@@ -12,6 +14,12 @@
 #include "mesh/planar_pieces.h"
 
 namespace rad {
+namespace {
+
+/// Whether some channel is positive.
+bool anyPositive(const glm::dvec3& E) { return E.x > 0 || E.y > 0 || E.z > 0; }
+
+}  // namespace
 
 PatchMesh::PatchMesh() {
   mesh.add_property(surface_, "surface");
@@ -24,11 +32,8 @@ PatchMesh::PatchMesh() {
 }
 
 bool PatchMesh::emits(int p) const {
-  for (int e : patches[size_t(p)].elements) {
-    const glm::dvec3 E = emission(e);
-    if (E.x > 0 || E.y > 0 || E.z > 0) return true;
-  }
-  return false;
+  const std::vector<int>& elements = patches[size_t(p)].elements;
+  return std::any_of(elements.begin(), elements.end(), [&](int e) { return anyPositive(emission(e)); });
 }
 
 glm::dvec3 PatchMesh::centroid(int e) const {

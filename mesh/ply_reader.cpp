@@ -1,6 +1,7 @@
 #include "mesh/ply_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -69,15 +70,26 @@ bool headerLine(const std::string& bytes, size_t& at, std::string& line, const s
   return true;
 }
 
-void addProperty(Header& h, std::istringstream& words, const std::string& line, const std::string& path) {
-  if (h.elements.empty()) throw inputError(path, "an element before its properties", "'" + line + "'");
+/// The rest of a property line: "<type> <name>" or "list <count type> <type> <name>".
+Property propertyOf(std::istringstream& words) {
   Property p;
   words >> p.type;
   if (p.type == "list") words >> p.countType >> p.type;
   words >> p.name;
-  if (p.name.empty() || !typeSize(p.type) || (p.type == "list") ||
-      (!p.countType.empty() && (!typeSize(p.countType) || p.countType == "float" || p.countType == "double" ||
-                                p.countType == "float32" || p.countType == "float64")))
+  return p;
+}
+
+/// A named property of a scalar type, or a list of them counted by an integer type.
+bool wellTyped(const Property& p) {
+  const std::string& c = p.countType;
+  const bool integerCount = typeSize(c) && c != "float" && c != "double" && c != "float32" && c != "float64";
+  return !p.name.empty() && typeSize(p.type) && p.type != "list" && (c.empty() || integerCount);
+}
+
+void addProperty(Header& h, std::istringstream& words, const std::string& line, const std::string& path) {
+  if (h.elements.empty()) throw inputError(path, "an element before its properties", "'" + line + "'");
+  const Property p = propertyOf(words);
+  if (!wellTyped(p))
     throw inputError(path, "a property with PLY scalar types (an integer count for a list) and a name",
                      "'" + line + "'");
   Element& e = h.elements.back();
@@ -86,62 +98,78 @@ void addProperty(Header& h, std::istringstream& words, const std::string& line, 
   e.properties.push_back(p);
 }
 
+/// A format line: ascii, binary_little_endian or binary_big_endian, once.
+void readFormat(Header& h, std::istringstream& words, bool& format, const std::string& path) {
+  std::string name, version;
+  words >> name >> version;
+  if (format) throw inputError(path, "one format line", "two");
+  format = true;
+  if (name == "ascii") h.format = Format::Ascii;
+  else if (name == "binary_little_endian") h.format = Format::BinaryLittleEndian;
+  else if (name == "binary_big_endian") h.format = Format::BinaryBigEndian;
+  else throw inputError(path, "format ascii, binary_little_endian or binary_big_endian", "format " + name);
+}
+
+/// An element line: a new name and a count (at most INT32_MAX vertices).
+void addElement(Header& h, std::istringstream& words, const std::string& line,
+                std::set<std::string>& names, const std::string& path) {
+  Element e;
+  std::string count;
+  words >> e.name >> count;
+  char* end = nullptr;
+  e.count = std::strtoull(count.c_str(), &end, 10);
+  if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
+    throw inputError(path, "'element <name> <count>'", "'" + line + "'");
+  if (!names.insert(e.name).second) throw inputError(path, "each element once", "'" + e.name + "' twice");
+  if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
+    throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
+  h.elements.push_back(e);
+}
+
+/// What the header lines say so far.
+struct HeaderState {
+  bool format = false, ended = false;
+  std::set<std::string> names;  ///< of the elements
+};
+
+/// One header line after the magic.
+void headerLineInto(Header& h, const std::string& line, HeaderState& st, const std::string& path) {
+  std::istringstream words(line);
+  std::string word;
+  words >> word;
+  if (word == "format") readFormat(h, words, st.format, path);
+  else if (word == "comment") h.comments.push_back(line.size() > 8 ? line.substr(8) : "");
+  else if (word == "element") addElement(h, words, line, st.names, path);
+  else if (word == "property") addProperty(h, words, line, path);
+  else if (word == "end_header") st.ended = true;
+  else if (word != "obj_info" && !word.empty())
+    throw inputError(path, "a PLY header line (format, comment, element, property, end_header)", "'" + line + "'");
+}
+
+/// Counts against the file's size (`bytes` in all), before anything is allocated.
+void checkCounts(const Header& h, size_t bytes, const std::string& path) {
+  uint64_t needed = 0;
+  for (const auto& e : h.elements) {
+    const uint64_t record = minRecordBytes(e, h.format);
+    if (e.count > (bytes - h.body) / record || needed > bytes)
+      throw inputError(path + ": element " + e.name,
+                       "at most the " + std::to_string((bytes - h.body) / record) + " records the file's size allows",
+                       std::to_string(e.count) + " announced (a truncated file or a wrong count)");
+    needed += e.count * record;
+  }
+  if (needed > bytes - h.body) throw inputError(path, "a file as long as its header announces", "a truncated file");
+}
+
 Header parseHeader(const std::string& bytes, const std::string& path) {
   Header h;
   size_t at = 0;
   std::string line;
   if (!headerLine(bytes, at, line, path) || line != "ply") throw inputError(path, "a PLY file", "no 'ply' magic line");
-  bool format = false, ended = false;
-  std::set<std::string> names;
-  while (!ended && headerLine(bytes, at, line, path)) {
-    std::istringstream words(line);
-    std::string word;
-    words >> word;
-    if (word == "format") {
-      std::string name, version;
-      words >> name >> version;
-      if (format) throw inputError(path, "one format line", "two");
-      format = true;
-      if (name == "ascii") h.format = Format::Ascii;
-      else if (name == "binary_little_endian") h.format = Format::BinaryLittleEndian;
-      else if (name == "binary_big_endian") h.format = Format::BinaryBigEndian;
-      else throw inputError(path, "format ascii, binary_little_endian or binary_big_endian", "format " + name);
-    } else if (word == "comment") {
-      h.comments.push_back(line.size() > 8 ? line.substr(8) : "");
-    } else if (word == "element") {
-      Element e;
-      std::string count;
-      words >> e.name >> count;
-      char* end = nullptr;
-      e.count = std::strtoull(count.c_str(), &end, 10);
-      if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
-        throw inputError(path, "'element <name> <count>'", "'" + line + "'");
-      if (!names.insert(e.name).second) throw inputError(path, "each element once", "'" + e.name + "' twice");
-      if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
-        throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
-      h.elements.push_back(e);
-    } else if (word == "property") {
-      addProperty(h, words, line, path);
-    } else if (word == "end_header") {
-      ended = true;
-    } else if (word != "obj_info" && !word.empty()) {
-      throw inputError(path, "a PLY header line (format, comment, element, property, end_header)", "'" + line + "'");
-    }
-  }
-  if (!format || !ended) throw inputError(path, "a PLY header with a format line and end_header", "none");
+  HeaderState st;
+  while (!st.ended && headerLine(bytes, at, line, path)) headerLineInto(h, line, st, path);
+  if (!st.format || !st.ended) throw inputError(path, "a PLY header with a format line and end_header", "none");
   h.body = at;
-  // Counts against the file's size, before anything is allocated.
-  uint64_t needed = 0;
-  for (const auto& e : h.elements) {
-    const uint64_t record = minRecordBytes(e, h.format);
-    if (e.count > (bytes.size() - h.body) / record || needed > bytes.size())
-      throw inputError(path + ": element " + e.name,
-                       "at most the " + std::to_string((bytes.size() - h.body) / record) + " records the file's size allows",
-                       std::to_string(e.count) + " announced (a truncated file or a wrong count)");
-    needed += e.count * record;
-  }
-  if (needed > bytes.size() - h.body)
-    throw inputError(path, "a file as long as its header announces", "a truncated file");
+  checkCounts(h, bytes.size(), path);
   return h;
 }
 
@@ -159,10 +187,15 @@ class BodyReader {
   }
 
  private:
+  /// Whether byte i is in the body and white space.
+  bool spaceAt(size_t i) const { return i < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[i])); }
+  /// Whether byte i is in the body and not white space.
+  bool wordAt(size_t i) const { return i < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[i])); }
+
   double asciiScalar(const std::string& where) {
-    while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
+    while (spaceAt(at_)) ++at_;
     size_t end = at_;
-    while (end < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[end]))) ++end;
+    while (wordAt(end)) ++end;
     if (end == at_) throw inputError(where, "a number", "the end of the file (a truncated file)");
     const std::string word = bytes_.substr(at_, std::min<size_t>(end - at_, 64));
     char* stop = nullptr;
@@ -179,6 +212,11 @@ class BodyReader {
     std::memcpy(b, bytes_.data() + at_, n);
     if (format_ == Format::BinaryBigEndian) std::reverse(b, b + n);
     at_ += n;
+    return decode(t, b);
+  }
+
+  /// The scalar of type t in the bytes b, in this machine's order.
+  static double decode(const std::string& t, const unsigned char* b) {
     auto as = [&](auto v) {
       std::memcpy(&v, b, sizeof v);
       return double(v);
@@ -214,50 +252,92 @@ size_t listLength(BodyReader& body, const Property& p, const std::string& where,
   return size_t(n);
 }
 
-PlyPolygons readBody(const std::string& bytes, const Header& h, const std::string& path) {
-  PlyPolygons out;
-  out.mesh.comments = h.comments;
+/// A face's vertex indices: whole numbers below `vertices`.
+std::vector<int> readFaceIndices(BodyReader& body, const Property& p, size_t n, uint64_t vertices,
+                                 const std::string& where) {
+  std::vector<int> idx(n);
+  for (size_t k = 0; k < n; ++k) {
+    const double v = body.scalar(p.type, where);
+    if (v < 0 || v >= double(vertices) || v != std::floor(v)) {
+      char found[32];
+      std::snprintf(found, sizeof found, "%.17g", v);
+      throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
+                                       : std::string("no face (the file has no vertices)"), found);
+    }
+    idx[k] = int(v);
+  }
+  return idx;
+}
+
+/// Reads list property p of a record of e: a face's vertex indices into out.faces; any
+/// other list is read past.
+void readList(BodyReader& body, const Element& e, const Property& p, uint64_t vertices,
+              const std::string& where, PlyPolygons& out) {
+  const bool face = isFaceList(e, p);
+  const size_t n = listLength(body, p, where, face);
+  if (face) {
+    out.faces.push_back(readFaceIndices(body, p, n, vertices, where));
+    return;
+  }
+  for (size_t k = 0; k < n; ++k) body.scalar(p.type, where);
+}
+
+/// The columns of element e's scalar properties (none unless e holds vertices or faces),
+/// added to the mesh: a pointer to the first, or null.
+PlyColumn* addColumns(const Element& e, PlyPolygons& out) {
+  if (e.name != "vertex" && e.name != "face") return nullptr;
+  auto& columns = e.name == "vertex" ? out.mesh.vertex : out.mesh.face;
+  const size_t first = columns.size();
+  for (const auto& p : e.properties)
+    if (p.countType.empty()) columns.push_back({p.name, PlyColumn::Type::Float, {}});
+  return columns.data() + first;
+}
+
+/// Reads record i of element e; its scalars go to `columns` (if any), in order.
+void readRecord(BodyReader& body, const Element& e, uint64_t i, PlyColumn* columns,
+                uint64_t vertices, const std::string& path, PlyPolygons& out) {
+  const std::string record = path + ": " + e.name + " " + std::to_string(i);
+  for (const auto& p : e.properties) {
+    const std::string where = record + ": " + p.name;
+    if (!p.countType.empty()) {
+      readList(body, e, p, vertices, where, out);
+      continue;
+    }
+    const double v = body.scalar(p.type, where);
+    if (columns) (columns++)->values.push_back(v);
+  }
+}
+
+/// Reads the records of element e; the scalars of vertices and faces go to their columns.
+void readElement(BodyReader& body, const Element& e, uint64_t vertices, const std::string& path,
+                 PlyPolygons& out) {
+  PlyColumn* columns = addColumns(e, out);
+  for (uint64_t i = 0; i < e.count; ++i) readRecord(body, e, i, columns, vertices, path, out);
+}
+
+/// The vertex count the header announces (0 without a vertex element).
+uint64_t vertexCount(const Header& h) {
   uint64_t vertices = 0;
   for (const auto& e : h.elements)
     if (e.name == "vertex") vertices = e.count;
+  return vertices;
+}
+
+/// At most one vertex_indices list per element.
+void checkFaceLists(const Element& e, const std::string& path) {
+  int faceLists = 0;
+  for (const auto& p : e.properties) faceLists += isFaceList(e, p);
+  if (faceLists > 1) throw inputError(path + ": element face", "one vertex_indices list", "two");
+}
+
+PlyPolygons readBody(const std::string& bytes, const Header& h, const std::string& path) {
+  PlyPolygons out;
+  out.mesh.comments = h.comments;
+  const uint64_t vertices = vertexCount(h);
   BodyReader body(bytes, h, path);
   for (const auto& e : h.elements) {
-    const bool isVertex = e.name == "vertex", isFace = e.name == "face";
-    int faceLists = 0;
-    for (const auto& p : e.properties) faceLists += isFaceList(e, p);
-    if (faceLists > 1) throw inputError(path + ": element face", "one vertex_indices list", "two");
-    auto& columns = isVertex ? out.mesh.vertex : out.mesh.face;
-    const size_t first = columns.size();
-    if (isVertex || isFace)
-      for (const auto& p : e.properties)
-        if (p.countType.empty()) columns.push_back({p.name, PlyColumn::Type::Float, {}});
-    for (uint64_t i = 0; i < e.count; ++i) {
-      const std::string record = path + ": " + e.name + " " + std::to_string(i);
-      size_t c = 0;
-      for (const auto& p : e.properties) {
-        const std::string where = record + ": " + p.name;
-        if (p.countType.empty()) {
-          const double v = body.scalar(p.type, where);
-          if (isVertex || isFace) columns[first + c++].values.push_back(v);
-          continue;
-        }
-        const bool face = isFaceList(e, p);
-        const size_t n = listLength(body, p, where, face);
-        std::vector<int> idx(face ? n : 0);
-        for (size_t k = 0; k < n; ++k) {
-          const double v = body.scalar(p.type, where);
-          if (!face) continue;
-          if (v < 0 || v >= double(vertices) || v != std::floor(v)) {
-            char found[32];
-            std::snprintf(found, sizeof found, "%.17g", v);
-            throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
-                                             : std::string("no face (the file has no vertices)"), found);
-          }
-          idx[k] = int(v);
-        }
-        if (face) out.faces.push_back(std::move(idx));
-      }
-    }
+    checkFaceLists(e, path);
+    readElement(body, e, vertices, path, out);
   }
   return out;
 }
@@ -266,6 +346,14 @@ PlyPolygons readBody(const std::string& bytes, const Header& h, const std::strin
 void checkMagic(const std::string& head, const std::string& path) {
   if (head.compare(0, 4, "ply\n") != 0 && head.compare(0, 5, "ply\r\n") != 0)
     throw inputError(path, "a PLY file", "no 'ply' magic line");
+}
+
+/// Face f as a triangle; any other polygon is an error.
+std::array<int, 3> triangle(const std::vector<int>& face, size_t f, const std::string& path) {
+  if (face.size() != 3)
+    throw inputError(path + ": face " + std::to_string(f), "triangle faces",
+                     "a face with " + std::to_string(face.size()) + " vertices");
+  return {face[0], face[1], face[2]};
 }
 
 }  // namespace
@@ -291,12 +379,7 @@ PlyMesh readPly(const std::string& path) {
     throw inputError(path, "binary_little_endian PLY",
                      std::string("format ") + (header.format == Format::Ascii ? "ascii" : "binary_big_endian"));
   PlyPolygons read = readBody(bytes, header, path);
-  for (size_t f = 0; f < read.faces.size(); ++f) {
-    if (read.faces[f].size() != 3)
-      throw inputError(path + ": face " + std::to_string(f), "triangle faces",
-                       "a face with " + std::to_string(read.faces[f].size()) + " vertices");
-    read.mesh.faces.push_back({read.faces[f][0], read.faces[f][1], read.faces[f][2]});
-  }
+  for (size_t f = 0; f < read.faces.size(); ++f) read.mesh.faces.push_back(triangle(read.faces[f], f, path));
   return std::move(read.mesh);
 }
 

@@ -37,6 +37,29 @@ void checkColumns(const std::vector<PlyColumn>& columns, size_t n) {
   for (const auto& c : columns) RAD_CHECK_EQ(c.values.size(), n);
 }
 
+/// The header: the comments, then nv vertices and the triangles with their columns.
+void writeHeader(std::ostream& out, const PlyMesh& mesh, size_t nv) {
+  out << "ply\nformat binary_little_endian 1.0\n";
+  for (const auto& c : mesh.comments) out << "comment " << c << "\n";
+  out << "element vertex " << nv << "\n";
+  for (const auto& c : mesh.vertex) out << "property " << typeName(c.type) << " " << c.name << "\n";
+  out << "element face " << mesh.faces.size() << "\n";
+  out << "property list uchar int vertex_indices\n";
+  for (const auto& c : mesh.face) out << "property " << typeName(c.type) << " " << c.name << "\n";
+  out << "end_header\n";
+}
+
+/// The records: each vertex's columns, then each triangle's corners and columns.
+void writeBody(std::ostream& out, const PlyMesh& mesh, size_t nv) {
+  for (size_t i = 0; i < nv; ++i)
+    for (const auto& c : mesh.vertex) putValue(out, c.type, c.values[i]);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    put(out, uint8_t(3));
+    for (int k = 0; k < 3; ++k) put(out, int32_t(mesh.faces[f][k]));
+    for (const auto& c : mesh.face) putValue(out, c.type, c.values[f]);
+  }
+}
+
 }  // namespace
 
 void writePly(const std::string& path, const PlyMesh& mesh) {
@@ -44,21 +67,8 @@ void writePly(const std::string& path, const PlyMesh& mesh) {
   checkColumns(mesh.vertex, nv);
   checkColumns(mesh.face, mesh.faces.size());
   writeFileAtomically(path, [&](std::ostream& out) {
-    out << "ply\nformat binary_little_endian 1.0\n";
-    for (const auto& c : mesh.comments) out << "comment " << c << "\n";
-    out << "element vertex " << nv << "\n";
-    for (const auto& c : mesh.vertex) out << "property " << typeName(c.type) << " " << c.name << "\n";
-    out << "element face " << mesh.faces.size() << "\n";
-    out << "property list uchar int vertex_indices\n";
-    for (const auto& c : mesh.face) out << "property " << typeName(c.type) << " " << c.name << "\n";
-    out << "end_header\n";
-    for (size_t i = 0; i < nv; ++i)
-      for (const auto& c : mesh.vertex) putValue(out, c.type, c.values[i]);
-    for (size_t f = 0; f < mesh.faces.size(); ++f) {
-      put(out, uint8_t(3));
-      for (int k = 0; k < 3; ++k) put(out, int32_t(mesh.faces[f][k]));
-      for (const auto& c : mesh.face) putValue(out, c.type, c.values[f]);
-    }
+    writeHeader(out, mesh, nv);
+    writeBody(out, mesh, nv);
   });
 }
 

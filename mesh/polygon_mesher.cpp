@@ -34,27 +34,33 @@ using Face = CDT::Face_handle;
 /// The rings' constraint edges, as vertex pairs (lower first).
 using RingEdges = std::set<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>>;
 
+/// Inserts the points as a chain of constraints, closed for a ring (whose edges go into
+/// ringEdges). A point's id is the caller's, unless another chain gave it one already.
+void insertChain(CDT& cdt, const std::vector<glm::dvec2>& points, const std::vector<int>& ids,
+                 bool closed, RingEdges& ringEdges) {
+  std::vector<CDT::Vertex_handle> vs;
+  for (size_t k = 0; k < points.size(); ++k) {
+    auto v = cdt.insert(K::Point_2(points[k].x, points[k].y));
+    if (ids[k] >= 0 || v->info().id < 0) v->info().id = ids[k];
+    vs.push_back(v);
+  }
+  for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k) {
+    auto a = vs[k], b = vs[(k + 1) % vs.size()];
+    if (a == b) continue;
+    cdt.insert_constraint(a, b);
+    if (closed) ringEdges.insert({std::min(a, b), std::max(a, b)});
+  }
+}
+
 /// Inserts every ring as a closed chain of constraints and every line as an open one; returns
 /// the rings' edges.
 RingEdges insertRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
   RingEdges ringEdges;
-  auto chain = [&](const std::vector<glm::dvec2>& points, const std::vector<int>& ids, bool closed) {
-    std::vector<CDT::Vertex_handle> vs;
-    for (size_t k = 0; k < points.size(); ++k) {
-      auto v = cdt.insert(K::Point_2(points[k].x, points[k].y));
-      if (ids[k] >= 0 || v->info().id < 0) v->info().id = ids[k];
-      vs.push_back(v);
-    }
-    for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k) {
-      auto a = vs[k], b = vs[(k + 1) % vs.size()];
-      if (a == b) continue;
-      cdt.insert_constraint(a, b);
-      if (closed) ringEdges.insert({std::min(a, b), std::max(a, b)});
-    }
-  };
   try {
-    for (size_t r = 0; r < polygon.rings.size(); ++r) chain(polygon.rings[r], polygon.ids[r], true);
-    for (size_t l = 0; l < polygon.lines.size(); ++l) chain(polygon.lines[l], polygon.lineIds[l], false);
+    for (size_t r = 0; r < polygon.rings.size(); ++r)
+      insertChain(cdt, polygon.rings[r], polygon.ids[r], true, ringEdges);
+    for (size_t l = 0; l < polygon.lines.size(); ++l)
+      insertChain(cdt, polygon.lines[l], polygon.lineIds[l], false, ringEdges);
   } catch (const CDT::Intersection_of_constraints_exception&) {
     throw inputError(where, "a simple polygon whose holes lie inside it",
                      "edges that cross each other");
@@ -62,20 +68,20 @@ RingEdges insertRings(CDT& cdt, const Polygon2& polygon, const std::string& wher
   return ringEdges;
 }
 
-/// Marks faces by nesting depth across the rings' constraints (odd = inside the polygon minus
-/// its holes; the lines inside do not count) and returns one seed point in each connected part
-/// of the inside, parts being split by any constraint.
-std::vector<K::Point_2> markInside(CDT& cdt, const RingEdges& ringEdges) {
-  auto ringEdge = [&](Face f, int i) {
-    auto a = f->vertex(CDT::cw(i)), b = f->vertex(CDT::ccw(i));
-    return ringEdges.count({std::min(a, b), std::max(a, b)}) > 0;
-  };
+/// Whether edge i of face f (opposite its vertex i) is an edge of a ring.
+bool isRingEdge(const RingEdges& ringEdges, Face f, int i) {
+  auto a = f->vertex(CDT::cw(i)), b = f->vertex(CDT::ccw(i));
+  return ringEdges.count({std::min(a, b), std::max(a, b)}) > 0;
+}
+
+/// Each face's nesting depth across the rings' constraints (the lines inside do not count),
+/// breadth-first from the infinite face, one nesting level at a time.
+std::map<Face, int> nestingDepth(const CDT& cdt, const RingEdges& ringEdges) {
   std::map<Face, int> depth;
-  std::queue<Face> frontier, next;  // breadth-first, one nesting level at a time
+  std::queue<Face> frontier, next;
   next.push(cdt.infinite_face());
   depth[cdt.infinite_face()] = 0;
-  int level = 0;
-  while (!next.empty()) {
+  for (int level = 0; !next.empty(); ++level) {
     std::swap(frontier, next);
     while (!frontier.empty()) {
       Face f = frontier.front();
@@ -83,42 +89,61 @@ std::vector<K::Point_2> markInside(CDT& cdt, const RingEdges& ringEdges) {
       for (int i = 0; i < 3; ++i) {
         Face g = f->neighbor(i);
         if (depth.count(g)) continue;
-        if (ringEdge(f, i)) {
-          depth[g] = level + 1;
-          next.push(g);
-        } else {
-          depth[g] = level;
-          frontier.push(g);
-        }
+        const bool deeper = isRingEdge(ringEdges, f, i);
+        depth[g] = level + (deeper ? 1 : 0);
+        (deeper ? next : frontier).push(g);
       }
     }
-    ++level;
   }
+  return depth;
+}
+
+/// Marks f's connected part of the inside seen, parts being split by any constraint.
+void markPart(const CDT& cdt, Face f, std::map<Face, bool>& seen) {
+  std::queue<Face> q;
+  q.push(f);
+  seen[f] = true;
+  while (!q.empty()) {
+    Face g = q.front();
+    q.pop();
+    for (int i = 0; i < 3; ++i) {
+      Face h = g->neighbor(i);
+      if (cdt.is_infinite(h) || seen[h] || cdt.is_constrained(CDT::Edge(g, i))) continue;
+      if (h->is_in_domain()) {
+        seen[h] = true;
+        q.push(h);
+      }
+    }
+  }
+}
+
+/// Marks faces by nesting depth across the rings' constraints (odd = inside the polygon minus
+/// its holes; the lines inside do not count) and returns one seed point in each connected part
+/// of the inside, parts being split by any constraint.
+std::vector<K::Point_2> markInside(CDT& cdt, const RingEdges& ringEdges) {
+  std::map<Face, int> depth = nestingDepth(cdt, ringEdges);
   for (auto f : cdt.finite_face_handles()) f->set_in_domain(depth[f] % 2 == 1);
   std::vector<K::Point_2> seeds;
   std::map<Face, bool> seen;
   for (auto f : cdt.finite_face_handles()) {
     if (!f->is_in_domain() || seen[f]) continue;
     seeds.push_back(CGAL::centroid(cdt.triangle(f)));
-    std::queue<Face> q;
-    q.push(f);
-    seen[f] = true;
-    while (!q.empty()) {
-      Face g = q.front();
-      q.pop();
-      for (int i = 0; i < 3; ++i) {
-        Face h = g->neighbor(i);
-        if (cdt.is_infinite(h) || seen[h] || cdt.is_constrained(CDT::Edge(g, i))) continue;
-        if (h->is_in_domain()) {
-          seen[h] = true;
-          q.push(h);
-        }
-      }
-    }
+    markPart(cdt, f, seen);
   }
   return seeds;
 }
 
+/// Whether a constraint (a boundary segment or a line) ends at v.
+bool onConstraint(const CDT& cdt, CDT::Vertex_handle v) {
+  bool constrained = false;
+  auto e = cdt.incident_edges(v), end = e;
+  do {
+    constrained = constrained || cdt.is_constrained(*e);
+  } while (++e != end);
+  return constrained;
+}
+
+/// The triangulation's points (with their ids) and its faces inside the domain.
 Triangulation2 extract(const CDT& cdt) {
   Triangulation2 out;
   std::map<CDT::Vertex_handle, int> index;
@@ -126,14 +151,7 @@ Triangulation2 extract(const CDT& cdt) {
     index[v] = int(out.points.size());
     out.points.emplace_back(v->point().x(), v->point().y());
     out.ids.push_back(v->info().id);
-    bool boundary = false;
-    if (v->info().id < 0) {
-      auto e = cdt.incident_edges(v), end = e;
-      do {
-        boundary = boundary || cdt.is_constrained(*e);
-      } while (++e != end);
-    }
-    out.onBoundary.push_back(boundary);
+    out.onBoundary.push_back(v->info().id < 0 && onConstraint(cdt, v));
   }
   for (auto f : cdt.finite_face_handles())
     if (f->is_in_domain())
@@ -163,6 +181,16 @@ bool isGoodTriangle(const Polygon2& p, double maxEdge, bool meshFace) {
   return cross > 0;
 }
 
+/// The polygon, a lone triangle, as its own triangulation.
+Triangulation2 loneTriangle(const Polygon2& p) {
+  Triangulation2 out;
+  out.points = p.rings[0];
+  out.ids = p.ids[0];
+  out.onBoundary.assign(3, false);
+  out.triangles.push_back({0, 1, 2});
+  return out;
+}
+
 }  // namespace
 
 Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
@@ -173,14 +201,7 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
                            bool meshFace) {
-  if (isGoodTriangle(polygon, maxEdge, meshFace)) {
-    Triangulation2 out;
-    out.points = polygon.rings[0];
-    out.ids = polygon.ids[0];
-    out.onBoundary.assign(3, false);
-    out.triangles.push_back({0, 1, 2});
-    return out;
-  }
+  if (isGoodTriangle(polygon, maxEdge, meshFace)) return loneTriangle(polygon);
   CDT cdt;
   std::vector<K::Point_2> seeds = markInside(cdt, insertRings(cdt, polygon, where));
   // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.

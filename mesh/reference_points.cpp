@@ -49,12 +49,27 @@ double number(const std::string& text, const std::string& where, const char* col
   return v;
 }
 
+/// The columns' names, for messages.
+constexpr const char* kColumnNames[kColumns] = {"x", "y", "z", "nx", "ny", "nz", "surface", "tag",
+                                                "B_r", "B_g", "B_b", "se_r", "se_g", "se_b", "paths"};
+
+/// The values are a point's: a whole number of paths, a unit normal, B and errors >= 0.
+void checkPoint(const double (&v)[kColumns], const std::vector<std::string>& f,
+                const std::string& where) {
+  if (!(v[14] >= 0 && v[14] <= 4e18 && v[14] == std::floor(v[14])))
+    throw inputError(where + ": paths", "a whole number of paths >= 0", f[14]);
+  const double length = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+  if (std::abs(length - 1) > kUnitTolerance)
+    throw inputError(where + ": nx,ny,nz", "a unit normal", "length " + std::to_string(length));
+  for (int k = 8; k < kColumns; ++k)
+    if (v[k] < 0) throw inputError(where + ": " + kColumnNames[k], "a value >= 0", f[size_t(k)]);
+}
+
 ReferencePoint parsePoint(const std::vector<std::string>& f, const std::string& where) {
-  static const char* names[] = {"x", "y", "z", "nx", "ny", "nz", "surface", "tag", "B_r", "B_g",
-                                "B_b", "se_r", "se_g", "se_b", "paths"};
   double v[kColumns] = {};
   for (int k = 0; k < kColumns; ++k)
-    if (k != 6 && k != 7) v[k] = number(f[size_t(k)], where, names[k]);
+    if (k != 6 && k != 7) v[k] = number(f[size_t(k)], where, kColumnNames[k]);
+  checkPoint(v, f, where);
   ReferencePoint p;
   p.position = {v[0], v[1], v[2]};
   p.normal = {v[3], v[4], v[5]};
@@ -62,15 +77,42 @@ ReferencePoint parsePoint(const std::vector<std::string>& f, const std::string& 
   p.tag = f[7];
   p.B = {v[8], v[9], v[10]};
   p.standardError = {v[11], v[12], v[13]};
-  if (!(v[14] >= 0 && v[14] <= 4e18 && v[14] == std::floor(v[14])))
-    throw inputError(where + ": paths", "a whole number of paths >= 0", f[14]);
   p.paths = long(v[14]);
-  const double length = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
-  if (std::abs(length - 1) > kUnitTolerance)
-    throw inputError(where + ": nx,ny,nz", "a unit normal", "length " + std::to_string(length));
-  for (int k = 8; k < kColumns; ++k)
-    if (v[k] < 0) throw inputError(where + ": " + names[k], "a value >= 0", f[size_t(k)]);
   return p;
+}
+
+/// The first line that is neither a comment nor empty names the columns.
+void checkColumnLine(const std::string& line, const std::string& where) {
+  if (line != kReferenceColumns)
+    throw inputError(where, std::string("the column names '") + kReferenceColumns + "'",
+                     "'" + line.substr(0, 80) + "'");
+}
+
+/// A data line as a point.
+ReferencePoint pointOfLine(const std::string& line, const std::string& where) {
+  std::vector<std::string> f;
+  if (!splitColumns(line, f)) throw inputError(where, "a closing quote", "none");
+  if (f.size() != kColumns)
+    throw inputError(where, std::to_string(kColumns) + " comma-separated columns",
+                     std::to_string(f.size()));
+  return parsePoint(f, where);
+}
+
+/// A number as it is written: all 17 significant digits, so it reads back exactly.
+std::string exact(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+/// One point as a CSV row.
+void writeRow(std::ostream& out, const ReferencePoint& p) {
+  for (const glm::dvec3* v : {&p.position, &p.normal})
+    for (int k = 0; k < 3; ++k) out << exact((*v)[k]) << ",";
+  out << cell(p.surface) << "," << cell(p.tag);
+  for (const glm::dvec3* v : {&p.B, &p.standardError})
+    for (int k = 0; k < 3; ++k) out << "," << exact((*v)[k]);
+  out << "," << p.paths << "\n";
 }
 
 }  // namespace
@@ -79,19 +121,7 @@ void writeReferenceFile(const std::string& path, const ReferenceFile& file) {
   writeFileAtomically(path, [&](std::ostream& out) {
     for (const auto& h : file.header) out << "# " << h << "\n";
     out << kReferenceColumns << "\n";
-    char buf[64];
-    auto put = [&](double v) {
-      std::snprintf(buf, sizeof buf, "%.17g", v);
-      out << buf;
-    };
-    for (const auto& p : file.points) {
-      for (const glm::dvec3* v : {&p.position, &p.normal})
-        for (int k = 0; k < 3; ++k) put((*v)[k]), out << ",";
-      out << cell(p.surface) << "," << cell(p.tag);
-      for (const glm::dvec3* v : {&p.B, &p.standardError})
-        for (int k = 0; k < 3; ++k) out << ",", put((*v)[k]);
-      out << "," << p.paths << "\n";
-    }
+    for (const auto& p : file.points) writeRow(out, p);
   });
 }
 
@@ -99,30 +129,18 @@ ReferenceFile readReferenceFile(const std::string& path) {
   std::istringstream in(readInputFile(path, "a readable reference file (CSV)"));
   ReferenceFile file;
   std::string line;
-  int lineNo = 0;
   bool columns = false;
-  while (std::getline(in, line)) {
-    ++lineNo;
+  for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string where = path + ": line " + std::to_string(lineNo);
-    if (line.rfind("#", 0) == 0) {
+    if (line.rfind("#", 0) == 0)
       file.header.push_back(line.substr(line.size() > 1 && line[1] == ' ' ? 2 : 1));
+    else if (line.empty())
       continue;
-    }
-    if (line.empty()) continue;
-    if (!columns) {
-      if (line != kReferenceColumns)
-        throw inputError(where, std::string("the column names '") + kReferenceColumns + "'",
-                         "'" + line.substr(0, 80) + "'");
-      columns = true;
-      continue;
-    }
-    std::vector<std::string> f;
-    if (!splitColumns(line, f)) throw inputError(where, "a closing quote", "none");
-    if (f.size() != kColumns)
-      throw inputError(where, std::to_string(kColumns) + " comma-separated columns",
-                       std::to_string(f.size()));
-    file.points.push_back(parsePoint(f, where));
+    else if (!columns)
+      checkColumnLine(line, where), columns = true;
+    else
+      file.points.push_back(pointOfLine(line, where));
   }
   if (!columns) throw inputError(path, "a reference file (CSV with the column line)", "none");
   if (file.points.empty()) throw inputError(path, "at least one reference point", "none");

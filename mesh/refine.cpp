@@ -54,6 +54,13 @@ std::vector<int> vertexSides(const PatchMesh& pm) {
   return side;
 }
 
+/// The vertices in a hash of cells of size `cell`.
+SpatialHash vertexHash(const Mesh& m, double cell) {
+  SpatialHash grid(cell);
+  for (auto v : m.vertices()) grid.insert(PatchMesh::toGlm(m.point(v)), v.idx());
+  return grid;
+}
+
 /// Adds the vertices of v's side in v's cell (after v) within `distance` of it.
 void addCoincident(const Mesh& m, const SpatialHash& grid, const std::vector<int>& side,
                    Mesh::VertexHandle v, double distance, std::vector<TJunction>& out) {
@@ -156,16 +163,23 @@ class Bisector {
     for (auto [a2, b2] : twins) splitEdgeBetween(a2, b2);
   }
 
-  void split(Mesh::EdgeHandle e) {
-    auto h = m_.halfedge_handle(e, 0);
-    const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
-    const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
-    // The faces on either side keep their handles as one half; their areas halve.
+  /// The faces on either side of h, which keep their handles as one half, with their areas
+  /// halved.
+  std::vector<std::pair<Mesh::FaceHandle, double>> halvedAreas(Mesh::HalfedgeHandle h) const {
     std::vector<std::pair<Mesh::FaceHandle, double>> halved;
     for (auto side : {h, m_.opposite_halfedge_handle(h)}) {
       auto f = m_.face_handle(side);
       if (f.is_valid()) halved.emplace_back(f, pm_.area(f.idx()) * 0.5);
     }
+    return halved;
+  }
+
+  /// Splits edge e at its midpoint (and the same edge of other surfaces: splitTwins).
+  void split(Mesh::EdgeHandle e) {
+    auto h = m_.halfedge_handle(e, 0);
+    const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
+    const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
+    const auto halved = halvedAreas(h);
     const size_t facesBefore = m_.n_faces();
     auto v = m_.add_vertex(mid);
     if (splits_) splits_->push_back({v.idx(), a.idx(), b.idx()});
@@ -188,6 +202,16 @@ class Bisector {
   int added_ = 0;
 };
 
+/// Patch element lists and surface element counts, from the elements.
+void recountElements(PatchMesh& mesh) {
+  for (auto& p : mesh.patches) p.elements.clear();
+  for (auto& s : mesh.surfaces) s.elements = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    mesh.patches[size_t(mesh.patch(e))].elements.push_back(e);
+    mesh.surfaces[size_t(mesh.surface(e))].elements += 1;
+  }
+}
+
 }  // namespace
 
 double longestEdge(const PatchMesh& mesh, int e) {
@@ -204,13 +228,7 @@ int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
     RAD_CHECK(e >= 0 && e < before);
     bisector.bisect(Mesh::FaceHandle(e));
   }
-  // Patch element lists and surface counts.
-  for (auto& p : mesh.patches) p.elements.clear();
-  for (auto& s : mesh.surfaces) s.elements = 0;
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    mesh.patches[size_t(mesh.patch(e))].elements.push_back(e);
-    mesh.surfaces[size_t(mesh.surface(e))].elements += 1;
-  }
+  recountElements(mesh);
   return mesh.elementCount() - before;
 }
 
@@ -222,8 +240,7 @@ std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance, boo
   const double meanEdge = meanEdgeLength(m);
   const double cell = meanEdge > 0 ? meanEdge : 1.0;
   const std::vector<int> side = vertexSides(pm);
-  SpatialHash grid(cell);
-  for (auto v : m.vertices()) grid.insert(PatchMesh::toGlm(m.point(v)), v.idx());
+  const SpatialHash grid = vertexHash(m, cell);
   // Coincident vertices of one side.
   for (auto v : m.vertices()) addCoincident(m, grid, side, v, tolerance * cell, out);
   // Vertices inside edges: visit the cells the edge's bounding box covers.
