@@ -9,11 +9,12 @@
 
 #include "mesh/geometry.h"
 #include "mesh/patch_mesh.h"
+#include "tests/support.h"
 
 namespace rad {
 namespace {
 
-const std::string kScenes = std::string(RAD_SOURCE_DIR) + "/scenes/";
+using test::kScenes;
 
 /// Surface areas within this of the reference table (cornell_box.md).
 constexpr double kCornellAreaTolerance = 5e-4;

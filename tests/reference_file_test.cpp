@@ -9,6 +9,7 @@
 #include "mesh/error.h"
 #include "mesh/mesh_file.h"
 #include "mesh/reference_points.h"
+#include "tests/support.h"
 
 namespace rad {
 namespace {
@@ -54,12 +55,8 @@ TEST(ReferenceFileTest, BadNumbersAreLocatedErrors) {
   };
   for (const auto& [line, message] : cases) {
     std::ofstream(path) << columns << "\n" << line << "\n";
-    try {
-      readReferenceFile(path);
-      ADD_FAILURE() << line;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-    }
+    SCOPED_TRACE(line);
+    test::expectError([&] { readReferenceFile(path); }, {path + ": " + message});
   }
   std::filesystem::remove(path);
 }
@@ -72,7 +69,7 @@ namespace {
 
 /// Mesh files whose lines end in CR alone (old Mac) or CRLF (Windows) read like any other.
 TEST(MeshFileTest, LineEndsOfEveryKind) {
-  const std::string data = std::string(RAD_SOURCE_DIR) + "/tests/data/";
+  const std::string& data = test::kData;
   const auto cr = readMeshFile(data + "cr_line_ends.obj", "test");
   ASSERT_EQ(cr.size(), 1u);
   ASSERT_EQ(cr[0].faces.size(), 1u);
