@@ -1,7 +1,7 @@
-// Fuzz target: a result PLY as radview reads it (display/result_file.h).
-#include "display/result_file.h"
+// Fuzz target: a result PLY as radview and --fixed-point read it (mesh/result_file.h).
+#include "mesh/result_file.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  return rad::fuzz::readOrReject(data, size, "ply", [](const std::string& path) { rad::viewer::loadResult(path); });
+  return rad::fuzz::readOrReject(data, size, "ply", [](const std::string& path) { rad::readResultFile(path); });
 }
