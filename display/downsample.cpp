@@ -10,19 +10,21 @@
 namespace rad::viewer::internal {
 namespace {
 
-/// Linear value of each sRGB display byte: the inverse of mesh/color.h's srgbEncode (found by
-/// bisection on it, so the curve has one home).
+/// The linear value whose srgbEncode is `want`, by bisection on it (so the curve has one home).
+double srgbDecode(double want) {
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 60; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (srgbEncode(mid) < want ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// Linear value of each sRGB display byte: the inverse of mesh/color.h's srgbEncode.
 const std::array<double, 256>& srgbDecodeTable() {
   static const std::array<double, 256> table = [] {
     std::array<double, 256> t{};
-    for (int b = 0; b < 256; ++b) {
-      double lo = 0, hi = 1, want = b / 255.0;
-      for (int i = 0; i < 60; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (srgbEncode(mid) < want ? lo : hi) = mid;
-      }
-      t[b] = 0.5 * (lo + hi);
-    }
+    for (int b = 0; b < 256; ++b) t[b] = srgbDecode(b / 255.0);
     return t;
   }();
   return table;
@@ -37,6 +39,16 @@ std::vector<T> flipped(const std::vector<T>& big, int width, int height) {
   return out;
 }
 
+/// The sum in linear light of channel c over the k x k block of pixel (x, y) of a picture
+/// `bigWidth` wide.
+template <class T, class Decode>
+double blockSum(const std::vector<T>& big, int bigWidth, int x, int y, int c, int k, Decode decode) {
+  double sum = 0;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) sum += decode(big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c]);
+  return sum;
+}
+
 /// Box-filters a (width·k) × (height·k) bottom-up picture down to width × height, top row first:
 /// each value is taken to linear light by `decode`, averaged, and brought back by `encode`.
 template <class T, class Decode, class Encode>
@@ -48,12 +60,8 @@ std::vector<T> boxFilter(const std::vector<T>& big, int width, int height, int k
   const double norm = 1.0 / (k * k);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        double sum = 0;
-        for (int j = 0; j < k; ++j)
-          for (int i = 0; i < k; ++i) sum += decode(big[(size_t(y * k + j) * bigWidth + x * k + i) * 3 + c]);
-        out[(size_t(height - 1 - y) * width + x) * 3 + c] = encode(sum * norm);
-      }
+      for (int c = 0; c < 3; ++c)
+        out[(size_t(height - 1 - y) * width + x) * 3 + c] = encode(blockSum(big, bigWidth, x, y, c, k, decode) * norm);
   return out;
 }
 

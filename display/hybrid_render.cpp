@@ -24,6 +24,16 @@ glm::vec3 faceNormal(const ResultFile& mesh, size_t f) {
   return len > 0 ? n / len : glm::vec3(0, 0, 1);
 }
 
+/// What hybrid mode refuses: the software backend, the radiance image, a result without
+/// surfaces of the scene, and a scene without lights.
+void checkHybridInputs(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode hybrid", "--backend osmesa (the hybrid model is OpenGL-only)", "--backend software");
+  if (o.radiance) throw inputError("--mode hybrid", "no --hdr (radiance is radiosity-only)", "--hdr");
+  internal::checkFaceSurfaces(mesh, scene, "--mode hybrid");
+  if (scene.lights.empty()) throw inputError(scene.path, "a scene with lights for --mode hybrid", "none");
+}
+
 }  // namespace
 
 namespace internal {
@@ -69,11 +79,7 @@ HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, S
 
 Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
   internal::checkSize(o);
-  if (o.backend != Backend::OsMesa)
-    throw inputError("--mode hybrid", "--backend osmesa (the hybrid model is OpenGL-only)", "--backend software");
-  if (o.radiance) throw inputError("--mode hybrid", "no --hdr (radiance is radiosity-only)", "--hdr");
-  internal::checkFaceSurfaces(mesh, scene, "--mode hybrid");
-  if (scene.lights.empty()) throw inputError(scene.path, "a scene with lights for --mode hybrid", "none");
+  checkHybridInputs(mesh, scene, o);
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
   viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);

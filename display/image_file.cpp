@@ -27,6 +27,16 @@ void writeWithStb(const std::string& path, const std::function<int(std::ostream&
   });
 }
 
+/// A w x h image of stb's RGB bytes, which it frees.
+Image imageFromStb(stbi_uc* data, int w, int h) {
+  Image image;
+  image.width = w;
+  image.height = h;
+  image.rgb.assign(data, data + size_t(w) * h * 3);
+  stbi_image_free(data);
+  return image;
+}
+
 }  // namespace
 
 void writePng(const std::string& path, const Image& image) {
@@ -43,12 +53,7 @@ Image readPng(const std::string& path) {
     const char* why = stbi_failure_reason();
     throw inputError(path, "a readable PNG image", why ? why : "an unreadable file");
   }
-  Image image;
-  image.width = w;
-  image.height = h;
-  image.rgb.assign(data, data + size_t(w) * h * 3);
-  stbi_image_free(data);
-  return image;
+  return imageFromStb(data, w, h);
 }
 
 void writeHdr(const std::string& path, const Image& image) {

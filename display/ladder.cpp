@@ -21,8 +21,8 @@ void pasteTile(Image& grid, const Image& tile, int cell) {
                 &grid.rgb[(size_t(y0 + y) * grid.width + x0) * 3]);
 }
 
-/// Tile 0: every element edge, no hidden-line removal.
-void drawWireframeTile(raster::Target& target, const std::vector<glm::vec4>& clip, const ResultFile& mesh) {
+/// Every face's three edges as pairs of vertex indices.
+std::vector<uint32_t> faceEdges(const ResultFile& mesh) {
   std::vector<uint32_t> edges;
   edges.reserve(mesh.faces.size() * 6);
   for (const auto& f : mesh.faces)
@@ -30,6 +30,12 @@ void drawWireframeTile(raster::Target& target, const std::vector<glm::vec4>& cli
       edges.push_back(uint32_t(f[k]));
       edges.push_back(uint32_t(f[(k + 1) % 3]));
     }
+  return edges;
+}
+
+/// Tile 0: every element edge, no hidden-line removal.
+void drawWireframeTile(raster::Target& target, const std::vector<glm::vec4>& clip, const ResultFile& mesh) {
+  const std::vector<uint32_t> edges = faceEdges(mesh);
   raster::State state;
   state.depthTest = false;
   raster::drawLines(target, state, clip.data(), clip.size(), edges.data(), edges.size() / 2,
@@ -79,6 +85,13 @@ Image softwareTile(const ResultFile& mesh, const Scene& scene, const RenderOptio
   return internal::imageOf(internal::targetBytes(target), o);
 }
 
+/// Throws unless the grid of tiles fits the largest picture.
+void checkGridFits(const RenderOptions& options) {
+  if (int64_t(options.width) * kLadderColumns > raster::kMaxSize || options.height * 2 > raster::kMaxSize)
+    throw inputError("--ladder", "a tile size whose grid fits " + std::to_string(raster::kMaxSize) + " pixels",
+                     std::to_string(options.width) + "x" + std::to_string(options.height));
+}
+
 /// The ladder's own limits on the options: OSMesa, no --hdr or --wireframe, a grid that fits.
 void checkLadderOptions(const RenderOptions& options) {
   internal::checkSize(options);
@@ -86,9 +99,16 @@ void checkLadderOptions(const RenderOptions& options) {
     throw inputError("--ladder", "--backend osmesa (the local tiles are OpenGL-only)", "--backend software");
   if (options.radiance) throw inputError("--ladder", "no --hdr", "--hdr");
   if (options.wireframe) throw inputError("--ladder", "no --wireframe (the ladder has its own)", "--wireframe");
-  if (int64_t(options.width) * kLadderColumns > raster::kMaxSize || options.height * 2 > raster::kMaxSize)
-    throw inputError("--ladder", "a tile size whose grid fits " + std::to_string(raster::kMaxSize) + " pixels",
-                     std::to_string(options.width) + "x" + std::to_string(options.height));
+  checkGridFits(options);
+}
+
+/// Gives the materials without a specular colour kLadderSpecular and kLadderShininess.
+void addDefaultSpecular(std::vector<Material>& materials) {
+  for (Material& m : materials)
+    if (m.specular.x == 0 && m.specular.y == 0 && m.specular.z == 0) {
+      m.specular = glm::dvec4(glm::dvec3(kLadderSpecular), 1.0);
+      m.shininess = kLadderShininess;
+    }
 }
 
 /// Tiles 2 to 4: the scene lit by the local model, flat, smooth, and smooth with specular
@@ -101,12 +121,17 @@ void pasteLocalTiles(Image& grid, const Scene& scene, const RenderOptions& o) {
   pasteTile(grid, renderLocal(local, lo), 2);
   lo.shade = Shading::Smooth;
   pasteTile(grid, renderLocal(local, lo), 3);
-  for (Material& m : local.scene.materials)
-    if (m.specular.x == 0 && m.specular.y == 0 && m.specular.z == 0) {
-      m.specular = glm::dvec4(glm::dvec3(kLadderSpecular), 1.0);
-      m.shininess = kLadderShininess;
-    }
+  addDefaultSpecular(local.scene.materials);
   pasteTile(grid, renderLocal(local, lo), 4);
+}
+
+/// The black grid of the ladder's tiles, kLadderColumns wide.
+Image blankGrid(const RenderOptions& options) {
+  Image grid;
+  grid.width = options.width * kLadderColumns;
+  grid.height = options.height * ((kLadderTiles + kLadderColumns - 1) / kLadderColumns);
+  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 0);
+  return grid;
 }
 
 }  // namespace
@@ -116,10 +141,7 @@ Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptio
   internal::checkFaceSurfaces(mesh, scene, "--ladder");
   RenderOptions o = options;
   o.camera = effectiveCamera(mesh, options);  // one view for every tile
-  Image grid;
-  grid.width = options.width * kLadderColumns;
-  grid.height = options.height * ((kLadderTiles + kLadderColumns - 1) / kLadderColumns);
-  grid.rgb.assign(size_t(grid.width) * grid.height * 3, 0);
+  Image grid = blankGrid(options);
   pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/true), 0);
   pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/false), 1);
   pasteLocalTiles(grid, scene, o);

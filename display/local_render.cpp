@@ -34,6 +34,25 @@ detail::LocalBatch localBatch(const Material& m) {
   return b;
 }
 
+/// Sets the local scene's bounds to the box of its meshed vertices.
+void fitBounds(LocalScene& local) {
+  local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
+  local.boundsMax = -local.boundsMin;
+  for (auto v : local.mesh.mesh.vertices()) {
+    glm::dvec3 p = PatchMesh::toGlm(local.mesh.mesh.point(v));
+    local.boundsMin = glm::min(local.boundsMin, p);
+    local.boundsMax = glm::max(local.boundsMax, p);
+  }
+}
+
+/// The local model's limits on the options: OSMesa, no --exposure or --hdr.
+void checkLocalOptions(const RenderOptions& o) {
+  if (o.backend != Backend::OsMesa)
+    throw inputError("--mode local", "--backend osmesa (the local model is OpenGL-only)", "--backend software");
+  if (o.exposure) throw inputError("--mode local", "no --exposure (lighting sets the brightness)", "--exposure");
+  if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
+}
+
 }  // namespace
 
 LocalScene prepareLocalScene(Scene scene) {
@@ -42,13 +61,7 @@ LocalScene prepareLocalScene(Scene scene) {
   LocalScene local;
   local.mesh = buildPatchMesh(scene, resolveMeshSettings(scene, {}));
   local.scene = std::move(scene);
-  local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
-  local.boundsMax = -local.boundsMin;
-  for (auto v : local.mesh.mesh.vertices()) {
-    glm::dvec3 p = PatchMesh::toGlm(local.mesh.mesh.point(v));
-    local.boundsMin = glm::min(local.boundsMin, p);
-    local.boundsMax = glm::max(local.boundsMax, p);
-  }
+  fitBounds(local);
   if (local.mesh.elementCount() == 0) throw inputError(local.scene.path, "a scene with surfaces", "none");
   return local;
 }
@@ -84,10 +97,7 @@ LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
 
 Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   internal::checkSize(o);
-  if (o.backend != Backend::OsMesa)
-    throw inputError("--mode local", "--backend osmesa (the local model is OpenGL-only)", "--backend software");
-  if (o.exposure) throw inputError("--mode local", "no --exposure (lighting sets the brightness)", "--exposure");
-  if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
+  checkLocalOptions(o);
   const int w = o.width * o.ssaa, h = o.height * o.ssaa;
   glm::mat4 projection, view;
   const ResultFile bounds = boundsOnly(local);

@@ -50,6 +50,16 @@ struct ContextDeleter {
 };
 using Context = std::unique_ptr<osmesa_context, ContextDeleter>;
 
+/// Throws when a `width` x `height` picture exceeds the current context's largest viewport.
+void checkViewportFits(int width, int height) {
+  GLint maxViewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  if (width > maxViewport[0] || height > maxViewport[1])
+    throw std::runtime_error("OpenGL: a " + std::to_string(width) + "x" + std::to_string(height) +
+                             " picture exceeds the largest viewport, " + std::to_string(maxViewport[0]) +
+                             "x" + std::to_string(maxViewport[1]) + " (use a smaller size or --ssaa)");
+}
+
 /// Draws the list into `buffer` (RGBA, `type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first).
 /// Creates an RGBA context with a 24-bit depth buffer and makes it current on `buffer`.
 Context makeCurrent(int width, int height, GLenum type, void* buffer) {
@@ -64,12 +74,7 @@ Context makeCurrent(int width, int height, GLenum type, void* buffer) {
     throw std::runtime_error(
         "OpenGL: glGetString(GL_RENDERER) returned null after OSMesaMakeCurrent (is libGL linked "
         "into the same binary? link OSMesa only)");
-  GLint maxViewport[2] = {0, 0};
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
-  if (width > maxViewport[0] || height > maxViewport[1])
-    throw std::runtime_error("OpenGL: a " + std::to_string(width) + "x" + std::to_string(height) +
-                             " picture exceeds the largest viewport, " + std::to_string(maxViewport[0]) +
-                             "x" + std::to_string(maxViewport[1]) + " (use a smaller size or --ssaa)");
+  checkViewportFits(width, height);
   return ctx;
 }
 
@@ -82,6 +87,25 @@ void finish() {
   OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
 }
 
+/// Culls back faces (counter-clockwise fronts) or none.
+void setCulling(bool cullBack) {
+  if (cullBack) {
+    glFrontFace(GL_CCW);
+    glCullFace(GL_BACK);
+    glEnable(GL_CULL_FACE);  // also culls the GL_LINE pass of the wireframe
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+}
+
+/// Loads the camera: the projection and the view (modelview) matrices.
+void loadCamera(const glm::mat4& projection, const glm::mat4& view) {
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixf(glm::value_ptr(projection));
+  glMatrixMode(GL_MODELVIEW);
+  glLoadMatrixf(glm::value_ptr(view));
+}
+
 /// The state every pass starts from: cleared black colour and far depth, depth test LESS, no
 /// dithering, flat or smooth shading, culling of back faces or none, and the camera matrices.
 void beginFrame(int width, int height, Shading shade, bool cullBack, const glm::mat4& projection,
@@ -90,21 +114,12 @@ void beginFrame(int width, int height, Shading shade, bool cullBack, const glm::
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (cullBack) {
-    glFrontFace(GL_CCW);
-    glCullFace(GL_BACK);
-    glEnable(GL_CULL_FACE);  // also culls the GL_LINE pass of the wireframe
-  } else {
-    glDisable(GL_CULL_FACE);
-  }
+  setCulling(cullBack);
   glDisable(GL_DITHER);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(glm::value_ptr(projection));
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixf(glm::value_ptr(view));
+  loadCamera(projection, view);
 }
 
 void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
@@ -139,6 +154,25 @@ void setupLightModel(const LightModel& lm) {
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, lm.twoSided ? GL_TRUE : GL_FALSE);
 }
 
+/// The light's distance attenuation: constant, linear and quadratic factors.
+void setupAttenuation(GLenum id, const Light& l) {
+  glLightf(id, GL_CONSTANT_ATTENUATION, GLfloat(l.attenuation.x));
+  glLightf(id, GL_LINEAR_ATTENUATION, GLfloat(l.attenuation.y));
+  glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
+}
+
+/// The spot cone: direction, cutoff and exponent for a spot, a cutoff of 180 degrees otherwise.
+void setupSpotCone(GLenum id, const Light& l) {
+  if (l.type == Light::Type::Spot) {
+    const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
+    glLightfv(id, GL_SPOT_DIRECTION, d);
+    glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
+    glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
+  } else {
+    glLightf(id, GL_SPOT_CUTOFF, 180.0f);
+  }
+}
+
 /// One light as OpenGL light `id`: colours, position (w = 0 for directional), attenuation, and
 /// the spot cone (a cutoff of 180 degrees for the others).
 void setupLight(GLenum id, const Light& l) {
@@ -150,17 +184,8 @@ void setupLight(GLenum id, const Light& l) {
     setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
   else
     setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
-  glLightf(id, GL_CONSTANT_ATTENUATION, GLfloat(l.attenuation.x));
-  glLightf(id, GL_LINEAR_ATTENUATION, GLfloat(l.attenuation.y));
-  glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
-  if (l.type == Light::Type::Spot) {
-    const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
-    glLightfv(id, GL_SPOT_DIRECTION, d);
-    glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
-    glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
-  } else {
-    glLightf(id, GL_SPOT_CUTOFF, 180.0f);
-  }
+  setupAttenuation(id, l);
+  setupSpotCone(id, l);
 }
 
 /// The scene's light model and lights (GL_LIGHT0...), specified with the view matrix loaded:
@@ -175,14 +200,17 @@ void setupLights(const Scene& scene) {
   for (size_t i = 0; i < scene.lights.size(); ++i) setupLight(GLenum(GL_LIGHT0 + i), scene.lights[i]);
 }
 
+/// OpenGL's fog mode for the scene's.
+GLint fogMode(Fog::Mode mode) {
+  return mode == Fog::Mode::Linear ? GL_LINEAR : mode == Fog::Mode::Exp ? GL_EXP : GL_EXP2;
+}
+
 /// The scene's fog, when it has one.
 void setupFog(const std::optional<Fog>& fog) {
   if (!fog) return;
   const Fog& f = *fog;
   glEnable(GL_FOG);
-  glFogi(GL_FOG_MODE, f.mode == Fog::Mode::Linear ? GL_LINEAR
-                      : f.mode == Fog::Mode::Exp  ? GL_EXP
-                                                  : GL_EXP2);
+  glFogi(GL_FOG_MODE, fogMode(f.mode));
   const GLfloat c[4] = {GLfloat(f.color.x), GLfloat(f.color.y), GLfloat(f.color.z), GLfloat(f.color.w)};
   glFogfv(GL_FOG_COLOR, c);
   glFogf(GL_FOG_START, GLfloat(f.start));
@@ -241,6 +269,21 @@ std::vector<glm::vec4> scaledColours(const std::vector<glm::vec4>& radiance, flo
   return scaled;
 }
 
+/// Points the vertex and normal arrays at `positions` and `normals`, for lit drawing.
+void bindLitVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals) {
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, positions.data());
+  glNormalPointer(GL_FLOAT, 0, normals.data());
+}
+
+/// The largest channel of the radiance colours (0 when all are black).
+float peakChannel(const std::vector<glm::vec4>& radiance) {
+  float peak = 0;
+  for (const auto& c : radiance) peak = std::max({peak, c.r, c.g, c.b});
+  return peak;
+}
+
 /// The RGB part of an RGBA picture.
 std::vector<uint8_t> rgbOf(const std::vector<GLubyte>& rgba) {
   std::vector<uint8_t> rgb(rgba.size() / 4 * 3);
@@ -264,10 +307,7 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
   glDisable(GL_COLOR_MATERIAL);
   setupFog(scene.fog);
 
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_NORMAL_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
-  glNormalPointer(GL_FLOAT, 0, list.normals.data());
+  bindLitVertices(list.positions, list.normals);
   drawBatches(list.batches, list.positions.size(), wireframe, setLocalMaterial);
   rgb = rgbOf(buffer);
 }
@@ -281,11 +321,8 @@ void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const gl
   setupLights(scene);
   setupSpecularOnly();
 
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_NORMAL_ARRAY);
+  bindLitVertices(list.positions, list.normals);
   glEnableClientState(GL_COLOR_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
-  glNormalPointer(GL_FLOAT, 0, list.normals.data());
   glColorPointer(4, GL_FLOAT, 0, list.colours.data());
   drawBatches(list.batches, list.positions.size(), wireframe, setSpecularMaterial);
   rgb = rgbOf(buffer);
@@ -304,8 +341,7 @@ void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::
   if (!radiance) return;
   // Radiance through a float colour buffer. glColor values are clamped to [0, 1] on the way in,
   // so the colours are scaled into that range and the read-back scaled back.
-  float peak = 0;
-  for (const auto& c : list.radiance) peak = std::max({peak, c.r, c.g, c.b});
+  const float peak = peakChannel(list.radiance);
   const float scale = peak > 0 ? 1.0f / peak : 1.0f;
   std::vector<GLfloat> buffer(pixels * 4);
   drawPass(list, scaledColours(list.radiance, scale), projection, view, width, height, shade,

@@ -23,6 +23,18 @@ glm::vec4 storedColour(const std::array<uint8_t, 3>& c) {
   return glm::vec4(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f, 1.0f);
 }
 
+/// A clip-space point in window coordinates (pixels in a W x H picture, depth in [0, 1]).
+glm::dvec3 windowPoint(const glm::dvec4& c, double W, double H) {
+  return glm::dvec3((c.x / c.w + 1) * 0.5 * W, (c.y / c.w + 1) * 0.5 * H, (c.z / c.w + 1) * 0.5);
+}
+
+/// The largest window-depth slope per pixel of the plane through three window points (0 when
+/// the triangle is edge-on).
+double depthSlope(const glm::dvec3 w[3]) {
+  const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+  return std::abs(n.z) > 1e-12 ? std::max(std::abs(n.x / n.z), std::abs(n.y / n.z)) : 0.0;
+}
+
 /// The window-depth bias of a triangle's wireframe: its largest window-depth slope per pixel
 /// (its depth plane, when all three vertices are in front of the eye) plus kWireDepthBias, as
 /// glPolygonOffset(1, 1) pushes the fill back in OpenGL.
@@ -33,12 +45,9 @@ float wireDepthBias(const std::vector<glm::vec4>& clip, const uint32_t v[3], dou
   for (int k = 0; k < 3; ++k) {
     const glm::dvec4 c(clip[v[k]]);
     if (c.w <= 0) inFront = false;
-    else w[k] = glm::dvec3((c.x / c.w + 1) * 0.5 * W, (c.y / c.w + 1) * 0.5 * H, (c.z / c.w + 1) * 0.5);
+    else w[k] = windowPoint(c, W, H);
   }
-  if (inFront) {
-    const glm::dvec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
-    if (std::abs(n.z) > 1e-12) slope = std::max(std::abs(n.x / n.z), std::abs(n.y / n.z));
-  }
+  if (inFront) slope = depthSlope(w);
   return float(slope + detail::kWireDepthBias);
 }
 
@@ -51,16 +60,32 @@ std::vector<uint32_t> frontTriangles(const std::vector<glm::vec4>& clip) {
   return front;
 }
 
+/// The RGB floats of the target's colour buffer.
+std::vector<float> colourFloats(const raster::Target& target) {
+  std::vector<float> rgb(target.color.size() * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = target.color[p][c];
+  return rgb;
+}
+
 /// The raster core's radiance picture of the draw list (RGB floats, bottom-up) into `target`.
 std::vector<float> softwareRadiance(raster::Target& target, const raster::State& state,
                                     const std::vector<glm::vec4>& clip, const detail::DrawList& list) {
   const size_t n = clip.size();
   target.clear();
   raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.radiance.data());
-  std::vector<float> radiance(target.color.size() * 3);
-  for (size_t p = 0; p < target.color.size(); ++p)
-    for (int c = 0; c < 3; ++c) radiance[p * 3 + c] = target.color[p][c];
-  return radiance;
+  return colourFloats(target);
+}
+
+/// The wireframe over the picture; with back-face culling, only the front faces' edges.
+void drawWireframeOver(raster::Target& target, const std::vector<glm::vec4>& clip, bool cullBack) {
+  if (cullBack) {
+    // As OpenGL culls before GL_LINE rasterisation: only the front faces' edges.
+    const std::vector<uint32_t> front = frontTriangles(clip);
+    detail::drawSoftwareWireframe(target, clip, &front);
+  } else {
+    detail::drawSoftwareWireframe(target, clip, nullptr);
+  }
 }
 
 /// The raster core's picture of the draw list: bytes and optionally radiance, bottom-up.
@@ -75,15 +100,18 @@ void renderSoftware(const detail::DrawList& list, const glm::mat4& mvp, int widt
   raster::transform(mvp, list.positions, clip);
   const size_t n = list.positions.size();
   raster::drawTriangles(target, state, clip.data(), n, nullptr, n / 3, nullptr, list.display.data());
-  if (wireframe && cullBack) {
-    // As OpenGL culls before GL_LINE rasterisation: only the front faces' edges.
-    const std::vector<uint32_t> front = frontTriangles(clip);
-    detail::drawSoftwareWireframe(target, clip, &front);
-  } else if (wireframe) {
-    detail::drawSoftwareWireframe(target, clip, nullptr);
-  }
+  if (wireframe) drawWireframeOver(target, clip, cullBack);
   rgb = internal::targetBytes(target);
   if (radiance) *radiance = softwareRadiance(target, state, clip, list);
+}
+
+/// The item buffer (bottom row first) in reading order, top row first.
+std::vector<uint32_t> topRowFirst(const raster::Target& target) {
+  std::vector<uint32_t> out(target.item.size());
+  const int width = target.width, height = target.height;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(&target.item[size_t(height - 1 - y) * width], width, &out[size_t(y) * width]);
+  return out;
 }
 
 }  // namespace
@@ -168,10 +196,7 @@ std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions&
   static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
   raster::drawTriangles(target, state, clip.data(), clip.size(),
                         reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
-  std::vector<uint32_t> out(target.item.size());
-  for (int y = 0; y < o.height; ++y)
-    std::copy_n(&target.item[size_t(o.height - 1 - y) * o.width], o.width, &out[size_t(y) * o.width]);
-  return out;
+  return topRowFirst(target);
 }
 
 }  // namespace rad::viewer

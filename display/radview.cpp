@@ -43,10 +43,14 @@ void addInputOptions(CLI::App& app, Args& a) {
   app.add_option("-o,--output", a.output, "PNG image to write")->required();
 }
 
-/// The options that say how it is drawn: size, shading, backend, exposure, culling, camera.
-void addDrawingOptions(CLI::App& app, Args& a) {
+/// The picture's size in pixels.
+void addSizeOptions(CLI::App& app, Args& a) {
   app.add_option("--width", a.o.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 16384));
   app.add_option("--height", a.o.height, "Image height in pixels (default 512)")->check(CLI::Range(1, 16384));
+}
+
+/// How colours are made: shading, backend, exposure.
+void addShadingOptions(CLI::App& app, Args& a) {
   app.add_option("--shade", a.shade,
                  "smooth: Gouraud on vertex radiosity (default); flat: each element's own value "
                  "(--mode local: vertex normals, or face normals with GL_FLAT)")
@@ -57,6 +61,10 @@ void addDrawingOptions(CLI::App& app, Args& a) {
       ->check(CLI::IsMember({"osmesa", "software"}));
   a.exposureOption = app.add_option("--exposure", a.exposure, "Exposure K (default: the file's `exposure` comment)")
                          ->check(CLI::PositiveNumber);
+}
+
+/// What is seen and how finely: culling, the element edges, the camera, supersampling.
+void addViewOptions(CLI::App& app, Args& a) {
   a.cullOption = app.add_option("--cull", a.cull,
                                 "none: draw every face (default); back: remove back faces, clockwise on "
                                 "screen (GL_CULL_FACE with GL_BACK, CCW front faces; both backends; radiosity "
@@ -118,6 +126,12 @@ void checkLocalArgs(const Args& a) {
   if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode local");
 }
 
+/// The supersampled picture must stay within the largest size.
+void checkSupersampledSize(const Args& a) {
+  if (int64_t(a.o.width) * a.o.ssaa > 16384 || int64_t(a.o.height) * a.o.ssaa > 16384)
+    throw CLI::ValidationError("--ssaa", "width and height times --ssaa must be at most 16384");
+}
+
 /// The usage checks after parsing: which options go with which mode. Throws CLI::ValidationError.
 void checkArgs(const Args& a) {
   if (*a.cullOption && (a.ladder || a.mode != "radiosity"))
@@ -126,8 +140,7 @@ void checkArgs(const Args& a) {
   else if (a.mode == "radiosity") checkRadiosityArgs(a);
   else if (a.mode == "hybrid") checkHybridArgs(a);
   else checkLocalArgs(a);
-  if (int64_t(a.o.width) * a.o.ssaa > 16384 || int64_t(a.o.height) * a.o.ssaa > 16384)
-    throw CLI::ValidationError("--ssaa", "width and height times --ssaa must be at most 16384");
+  checkSupersampledSize(a);
 }
 
 /// The render options the arguments give.
@@ -162,36 +175,49 @@ Rendered timed(Draw draw) {
   return r;
 }
 
+/// --mode local: loads the scene, applies --camera over its view, and renders it lit.
+Rendered renderLocalMode(const Args& a, RenderOptions o) {
+  const LocalScene local = loadLocalScene(a.scenePath);
+  printWarnings(local.scene);
+  if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(local, RenderOptions{}));
+  return timed([&] { return renderLocal(local, o); });
+}
+
+/// The scene the ladder and hybrid mode light the result with; empty for --mode radiosity.
+rad::Scene sceneBesideResult(const Args& a) {
+  rad::Scene scene;
+  if (!a.ladder && a.mode != "hybrid") return scene;
+  scene = rad::loadScene(a.scenePath);
+  printWarnings(scene);
+  return scene;
+}
+
 /// Loads the inputs of the chosen mode, applies --camera over the view they give, and renders.
 Rendered renderRequested(const Args& a, RenderOptions o) {
-  if (a.mode == "local") {
-    const LocalScene local = loadLocalScene(a.scenePath);
-    printWarnings(local.scene);
-    if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(local, RenderOptions{}));
-    return timed([&] { return renderLocal(local, o); });
-  }
+  if (a.mode == "local") return renderLocalMode(a, o);
   const rad::ResultFile mesh = rad::readResultFile(a.input);
-  rad::Scene scene;
-  if (a.ladder || a.mode == "hybrid") {
-    scene = rad::loadScene(a.scenePath);
-    printWarnings(scene);
-  }
+  const rad::Scene scene = sceneBesideResult(a);
   if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(mesh, RenderOptions{}));
   if (a.ladder) return timed([&] { return renderLadder(mesh, scene, o); });
   if (a.mode == "hybrid") return timed([&] { return renderHybrid(mesh, scene, o); });
   return timed([&] { return render(mesh, o); });
 }
 
-/// Writes the pictures and says what was drawn, how, in how long, and where it went.
-void writeAndReport(const Args& a, const RenderOptions& o, const Rendered& r) {
-  writePng(a.output, r.image);
-  if (!a.hdr.empty()) writeHdr(a.hdr, r.image);
+/// The report's opening: what was drawn, how, and in how long.
+std::string renderedLine(const Args& a, const RenderOptions& o, const Rendered& r) {
   const char* what = a.mode == "local" ? "local lighting, " : a.mode == "hybrid" ? "hybrid, " : "";
   char line[256];
   std::snprintf(line, sizeof line, "radview: rendered %dx%d (%s%s%s, %s shading, ssaa %d) in %.3f s; wrote ",
                 r.image.width, r.image.height, a.ladder ? "ladder, " : "", what, a.backend.c_str(),
                 a.shade.c_str(), o.ssaa, r.seconds);
-  std::cerr << line << a.output << (a.hdr.empty() ? "" : " and " + a.hdr) << "\n";
+  return line;
+}
+
+/// Writes the pictures and says what was drawn, how, in how long, and where it went.
+void writeAndReport(const Args& a, const RenderOptions& o, const Rendered& r) {
+  writePng(a.output, r.image);
+  if (!a.hdr.empty()) writeHdr(a.hdr, r.image);
+  std::cerr << renderedLine(a, o, r) << a.output << (a.hdr.empty() ? "" : " and " + a.hdr) << "\n";
 }
 
 /// Checks the output paths, renders and writes; errors are thrown.
@@ -232,7 +258,9 @@ int main(int argc, char** argv) {
   CLI::App app{kDescription};
   Args args;
   addInputOptions(app, args);
-  addDrawingOptions(app, args);
+  addSizeOptions(app, args);
+  addShadingOptions(app, args);
+  addViewOptions(app, args);
   addOtherPictureOptions(app, args);
   try {
     app.parse(argc, argv);

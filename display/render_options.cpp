@@ -63,29 +63,54 @@ CameraValues readCameraValues(const std::string& text) {
   return values;
 }
 
+/// Throws unless `key` has its count of numbers: one for fov, three for the others.
+void checkValueCount(const std::string& key, const std::vector<double>& v) {
+  const size_t want = key == "fov" ? 1 : 3;
+  if (v.size() != want)
+    throw badCamera(std::to_string(v.size()) + " number(s) for " + key + " where " +
+                    std::to_string(want) + " belong");
+}
+
+/// The camera's point or direction that `key` names (eye, target, up), or null (fov).
+glm::dvec3* cameraVector(Camera& c, const std::string& key) {
+  return key == "eye" ? &c.eye : key == "target" ? &c.target : key == "up" ? &c.up : nullptr;
+}
+
 /// Sets the keys' values in `c`: three numbers for eye, target and up, one for fov.
 void applyCameraValues(const CameraValues& values, Camera& c) {
   for (const auto& [key, v] : values) {
-    const size_t want = key == "fov" ? 1 : 3;
-    if (v.size() != want)
-      throw badCamera(std::to_string(v.size()) + " number(s) for " + key + " where " +
-                      std::to_string(want) + " belong");
+    checkValueCount(key, v);
     if (key == "fov") c.fovYDeg = v[0];
-    glm::dvec3* vec = key == "eye" ? &c.eye : key == "target" ? &c.target : key == "up" ? &c.up : nullptr;
+    glm::dvec3* vec = cameraVector(c, key);
     if (vec) *vec = glm::dvec3(v[0], v[1], v[2]);
   }
+}
+
+/// Corner `i` (0..7, bits x, y, z: high or low) of the box from lo to hi.
+glm::dvec3 boxCorner(int i, const glm::dvec3& lo, const glm::dvec3& hi) {
+  return glm::dvec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
 }
 
 /// The nearest and farthest depth along the view of the box's corners (view: world to eye).
 std::pair<double, double> depthRange(const glm::dmat4& view, const glm::dvec3& lo, const glm::dvec3& hi) {
   double nearest = std::numeric_limits<double>::infinity(), farthest = 0;
   for (int i = 0; i < 8; ++i) {
-    const glm::dvec3 p((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
-    const double depth = -(view * glm::dvec4(p, 1.0)).z;
+    const double depth = -(view * glm::dvec4(boxCorner(i, lo, hi), 1.0)).z;
     nearest = std::min(nearest, depth);
     farthest = std::max(farthest, depth);
   }
   return {nearest, farthest};
+}
+
+/// The camera's perspective for a width x height picture of the mesh, near and far fitted to
+/// the bounding box's corners along the view axis (view: world to eye).
+glm::dmat4 fittedPerspective(const ResultFile& mesh, const Camera& c, const glm::dmat4& view, int width,
+                             int height) {
+  const auto [nearest, farthest] = depthRange(view, mesh.boundsMin, mesh.boundsMax);
+  const double size = std::max(glm::length(mesh.boundsMax - mesh.boundsMin), 1e-9);
+  const double zFar = std::max(farthest, 0.0) * 1.01 + 1e-3 * size;
+  const double zNear = std::max(nearest * 0.99, zFar * 1e-4);
+  return glm::perspective(glm::radians(c.fovYDeg), double(width) / height, zNear, zFar);
 }
 
 }  // namespace
@@ -111,12 +136,7 @@ double effectiveExposure(const ResultFile& mesh, const RenderOptions& options) {
 glm::mat4 viewProjection(const ResultFile& mesh, const Camera& c, int width, int height,
                          glm::mat4* projection, glm::mat4* view) {
   const glm::dmat4 v = glm::lookAt(c.eye, c.target, c.up);
-  // Near and far fitted to the bounding box's corners along the view axis.
-  const auto [nearest, farthest] = depthRange(v, mesh.boundsMin, mesh.boundsMax);
-  const double size = std::max(glm::length(mesh.boundsMax - mesh.boundsMin), 1e-9);
-  const double zFar = std::max(farthest, 0.0) * 1.01 + 1e-3 * size;
-  const double zNear = std::max(nearest * 0.99, zFar * 1e-4);
-  const glm::dmat4 p = glm::perspective(glm::radians(c.fovYDeg), double(width) / height, zNear, zFar);
+  const glm::dmat4 p = fittedPerspective(mesh, c, v, width, height);
   if (projection) *projection = glm::mat4(p);
   if (view) *view = glm::mat4(v);
   return glm::mat4(p * v);
