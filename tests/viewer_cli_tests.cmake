@@ -16,7 +16,8 @@ target_compile_definitions(viewer_test PRIVATE
   RAD_VIEWER_INPUT="${VIEWER_INPUT}"
   RAD_VIEWER_OUT="${VIEWER_OUT}"
   RAD_SCENES="${PROJECT_SOURCE_DIR}/scenes"
-  RAD_GOLDEN_DIR="${CMAKE_CURRENT_SOURCE_DIR}/golden")
+  RAD_GOLDEN_DIR="${CMAKE_CURRENT_SOURCE_DIR}/golden"
+  RAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(viewer_test radview)
 gtest_discover_tests(viewer_test)
 
