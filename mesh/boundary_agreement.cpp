@@ -31,6 +31,12 @@ struct Segment {
   bool fine = false;       ///< split finer (a contact line across a surface)
 };
 
+/// Adds piece p to the segment's users (pieces come in order, each edge of one after the
+/// other).
+void addUser(Segment& s, int piece) {
+  if (s.users.empty() || s.users.back() != piece) s.users.push_back(piece);
+}
+
 /// One edge of a piece's boundary chain: a segment, walked from a to b or back.
 struct ChainEdge {
   int segment;
@@ -169,8 +175,7 @@ class PieceMesher {
     grid.visit(glm::min(a, b) - pad, glm::max(a, b) + pad, [&](int c) {
       if (c == from || c == to) return;
       double t = glm::dot(table_[c] - a, d) / len2;
-      if (t <= 0 || t >= 1) return;
-      if (glm::length(a + d * t - table_[c]) <= tolerance_) cuts.emplace_back(t, c);
+      if (t > 0 && t < 1 && glm::length(a + d * t - table_[c]) <= tolerance_) cuts.emplace_back(t, c);
     });
     std::sort(cuts.begin(), cuts.end());
     return cuts;
@@ -207,7 +212,7 @@ class PieceMesher {
       s.fine = s.fine || fine;
       splitEvenly(s);
     }
-    if (s.users.empty() || s.users.back() != piece) s.users.push_back(piece);
+    addUser(s, piece);
     return it->second;
   }
 

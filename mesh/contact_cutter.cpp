@@ -53,6 +53,12 @@ void forEachCycle(Face face, F&& f) {
   for (auto hole = face->inner_ccbs_begin(); hole != face->inner_ccbs_end(); ++hole) f(*hole);
 }
 
+/// Whether the edge from p0 to p1 crosses the ray from q along +x.
+bool crossesRay(const EK::Point_2& p0, const EK::Point_2& p1, const EK::Point_2& q) {
+  if ((p0.y() > q.y()) == (p1.y() > q.y())) return false;
+  return p0.x() + (q.y() - p0.y()) * (p1.x() - p0.x()) / (p1.y() - p0.y()) > q.x();
+}
+
 /// Ray-crossing parity of q against one boundary cycle: true when odd. Sets `onEdge` when q
 /// lies on one of the cycle's edges.
 bool oddCrossings(Ccb start, const EK::Point_2& q, bool& onEdge) {
@@ -60,10 +66,7 @@ bool oddCrossings(Ccb start, const EK::Point_2& q, bool& onEdge) {
   bool odd = false;
   do {
     EK::Point_2 p0 = c->source()->point(), p1 = c->target()->point();
-    if ((p0.y() > q.y()) != (p1.y() > q.y())) {
-      EK::FT x = p0.x() + (q.y() - p0.y()) * (p1.x() - p0.x()) / (p1.y() - p0.y());
-      if (x > q.x()) odd = !odd;
-    }
+    if (crossesRay(p0, p1, q)) odd = !odd;
     if (CGAL::collinear(p0, p1, q) && CGAL::collinear_are_ordered_along_line(p0, q, p1))
       onEdge = true;
   } while (++c != start);
@@ -90,11 +93,8 @@ bool pointBeside(Face f, Halfedge h, EK::Point_2& out) {
   EK::Vector_2 left = (b - a).perpendicular(CGAL::COUNTERCLOCKWISE);  // f is on the left
   EK::FT step(1.0 / 64);
   for (int k = 0; k < 40; ++k, step /= 2) {
-    EK::Point_2 q = mid + left * step;
-    if (strictlyInside(f, q)) {
-      out = q;
-      return true;
-    }
+    out = mid + left * step;
+    if (strictlyInside(f, out)) return true;
   }
   return false;
 }
@@ -135,13 +135,18 @@ double faceArea(Face f) {
   return area;
 }
 
+/// Notes the caller's id of point p, if it has one.
+void noteId(IdMap& idOf, const glm::dvec2& p, int id) {
+  if (id >= 0) idOf[{p.x, p.y}] = id;
+}
+
 /// Ring r of the polygon in exact points, consecutive duplicates dropped; the ids it knows go
 /// into idOf.
 std::vector<EK::Point_2> exactRing(const Polygon2& polygon, size_t r, IdMap& idOf) {
   std::vector<EK::Point_2> ring;
   for (size_t k = 0; k < polygon.rings[r].size(); ++k) {
     const glm::dvec2& p = polygon.rings[r][k];
-    if (polygon.ids[r][k] >= 0) idOf[{p.x, p.y}] = polygon.ids[r][k];
+    noteId(idOf, p, polygon.ids[r][k]);
     if (ring.empty() || ring.back() != exact(p)) ring.push_back(exact(p));
   }
   while (ring.size() > 1 && ring.back() == ring.front()) ring.pop_back();
@@ -161,8 +166,8 @@ void addContactCurves(const std::vector<ContactLine2>& contacts, IdMap& idOf,
   for (size_t i = 0; i < contacts.size(); ++i) {
     const ContactLine2& c = contacts[i];
     if (exact(c.a) == exact(c.b)) continue;
-    if (c.aId >= 0) idOf[{c.a.x, c.a.y}] = c.aId;
-    if (c.bId >= 0) idOf[{c.b.x, c.b.y}] = c.bId;
+    noteId(idOf, c.a, c.aId);
+    noteId(idOf, c.b, c.bId);
     curves.emplace_back(Segments::Curve_2(exact(c.a), exact(c.b)), int(i));
   }
 }
@@ -237,6 +242,12 @@ int idAt(const IdMap& idOf, const EK::Point_2& p) {
 /// its right.
 bool keptBoundary(KeptFaces& kept, Halfedge h) { return kept[h->face()] && !kept[h->twin()->face()]; }
 
+/// Whether h runs along contact lines only (none of the polygon's own edges).
+bool isContactEdge(Halfedge h) {
+  const auto& data = h->curve().data();
+  return std::find(data.begin(), data.end(), kRingEdge) == data.end();
+}
+
 /// The kept boundary edge after e, around e's target through the kept faces.
 Halfedge nextKeptBoundary(KeptFaces& kept, Halfedge e) {
   Halfedge next = e->next();
@@ -256,8 +267,7 @@ void addKeptRing(KeptFaces& kept, const IdMap& idOf, Halfedge h, std::set<Halfed
     done.insert(e);
     ring.push_back(approx(e->source()->point()));
     ids.push_back(idAt(idOf, e->source()->point()));
-    const auto& data = e->curve().data();
-    contact.push_back(std::find(data.begin(), data.end(), kRingEdge) == data.end());
+    contact.push_back(isContactEdge(e));
     e = nextKeptBoundary(kept, e);
   } while (e != h);
   out.kept.rings.push_back(std::move(ring));

@@ -50,6 +50,12 @@ bool insideOrOn(const PointTable& table, const Piece& s, const glm::dvec3& q, do
   return inside;
 }
 
+/// Whether an edge whose ends lie at signed distances dp and dq from a plane crosses it, each
+/// end farther than `tolerance` from it.
+bool crossesPlane(double dp, double dq, double tolerance) {
+  return (dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance);
+}
+
 /// The points of piece s's border in the plane of piece r (within `tolerance`): its corners
 /// there (with their ids) and where its edges cross the plane (id -1); and the range [lo, hi]
 /// of signed distances of its corners from that plane.
@@ -65,8 +71,7 @@ std::vector<std::pair<glm::dvec3, int>> pointsInPlane(const PointTable& table, c
       lo = std::min(lo, dp);
       hi = std::max(hi, dp);
       if (std::abs(dp) <= tolerance) on.push_back({p, ring[k]});
-      if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance))
-        on.push_back({p + (q - p) * (dp / (dp - dq)), -1});
+      if (crossesPlane(dp, dq, tolerance)) on.push_back({p + (q - p) * (dp / (dp - dq)), -1});
     }
   return on;
 }
@@ -87,12 +92,10 @@ std::vector<Contact3> stretchesIn(const PointTable& table, const Piece& s,
   for (size_t i = 0; i + 1 < on.size(); ++i) {
     const glm::dvec3 &p = on[i].first, &q = on[i + 1].first;
     if (glm::length(q - p) <= tolerance || !insideOrOn(table, s, (p + q) * 0.5, tolerance)) continue;
-    if (!out.empty() && glm::length(out.back().b - p) <= tolerance) {
-      out.back().b = q;
-      out.back().bId = on[i + 1].second;
-    } else {
+    if (!out.empty() && glm::length(out.back().b - p) <= tolerance)
+      out.back().b = q, out.back().bId = on[i + 1].second;  // joined to the last stretch
+    else
       out.push_back({p, q, on[i].second, on[i + 1].second});
-    }
   }
   return out;
 }
@@ -333,6 +336,15 @@ void addAcrossEdges(Context& cx, size_t r, const ContactCut& cut, size_t k,
     }
 }
 
+/// Adds kept ring k of the cut to the piece's rings (unless it collapsed), its contact edges
+/// to `across`.
+void keepRing(Context& cx, size_t r, const ContactCut& cut, size_t k, Piece& piece,
+              std::set<std::pair<int, int>>& across) {
+  std::vector<int> ring = keptRing(cx, r, cut, k);
+  addAcrossEdges(cx, r, cut, k, across);
+  if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
+}
+
 /// Adds kept line k of the cut to the piece's lines and to `across`.
 void keepLine(Context& cx, size_t r, const ContactCut& cut, size_t k, Piece& piece,
               std::set<std::pair<int, int>>& across) {
@@ -348,11 +360,7 @@ void keepLine(Context& cx, size_t r, const ContactCut& cut, size_t k, Piece& pie
 void keepCut(Context& cx, size_t r, const ContactCut& cut, Piece& piece,
              std::set<std::pair<int, int>>& across) {
   piece.rings.clear();
-  for (size_t k = 0; k < cut.kept.rings.size(); ++k) {
-    std::vector<int> ring = keptRing(cx, r, cut, k);
-    addAcrossEdges(cx, r, cut, k, across);
-    if (ring.size() >= 3) piece.rings.push_back(std::move(ring));
-  }
+  for (size_t k = 0; k < cut.kept.rings.size(); ++k) keepRing(cx, r, cut, k, piece, across);
   for (size_t k = 0; k < cut.kept.lines.size(); ++k) keepLine(cx, r, cut, k, piece, across);
 }
 
@@ -399,6 +407,7 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     // Find where other pieces touch or pierce piece r.
     const Lines found = contactLinesOf(cx, r);
     out.lines += int(found.lines.size());
+    // Lines along its own edges only, no solid side facing in: it stays whole.
     if (cutsNothing(cx, r, found.lines)) continue;
     // Cut it along them, leaving out what they enclose.
     const Polygon2 poly = projectedRings(table, pieces[r]);
@@ -407,6 +416,7 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);
   }
+  // Drop the pieces left out entirely.
   dropEmpty(pieces);
   return out;
 }

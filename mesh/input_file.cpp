@@ -10,6 +10,7 @@
 namespace rad {
 namespace {
 
+/// What a file that is not a regular one is, for messages.
 std::string kindOf(mode_t mode) {
   if (S_ISDIR(mode)) return "a folder";
   if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
@@ -18,6 +19,15 @@ std::string kindOf(mode_t mode) {
   return "not a regular file";
 }
 
+/// The size of the regular file at `path` (`what` it should be, for messages).
+uint64_t regularFileSize(const std::string& path, const std::string& what) {
+  struct stat st;
+  if (stat(path.c_str(), &st) != 0) throw inputError(path, what, "no such file");
+  if (!S_ISREG(st.st_mode)) throw inputError(path, what + " (a regular file)", kindOf(st.st_mode));
+  return uint64_t(st.st_size);
+}
+
+/// A size in whole MiB, for messages.
 std::string mebibytes(uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 /// An open input file, with what it should be (for messages) and whether it is text.
@@ -43,10 +53,7 @@ void readMore(const Source& s, std::string& bytes, size_t upTo) {
 }  // namespace
 
 uint64_t inputFileSize(const std::string& path, const std::string& what, uint64_t maxBytes) {
-  struct stat st;
-  if (stat(path.c_str(), &st) != 0) throw inputError(path, what, "no such file");
-  if (!S_ISREG(st.st_mode)) throw inputError(path, what + " (a regular file)", kindOf(st.st_mode));
-  const uint64_t size = uint64_t(st.st_size);
+  const uint64_t size = regularFileSize(path, what);
   if (size > maxBytes)
     throw inputError(path, what + " of at most " + mebibytes(maxBytes), "a file of " + mebibytes(size));
   return size;

@@ -18,6 +18,7 @@
 namespace rad {
 namespace {
 
+/// The file name's extension in lower case ("" without one).
 std::string lowerExtension(const std::string& path) {
   auto dot = path.find_last_of('.');
   if (dot == std::string::npos) return "";
@@ -27,6 +28,7 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+/// The text without white space at either end.
 std::string trimmed(std::string s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
   size_t start = 0;
@@ -62,17 +64,23 @@ void checkNumbers(std::istringstream& words, const std::string& key, const std::
     if (!finiteNumber(word, v)) throw inputError(where, "finite numbers after '" + key + "'", "'" + word + "'");
 }
 
+/// Whether the word is a whole number naming one of `vertices` vertices: 1-based, or
+/// negative counting back.
+bool isVertexIndex(const std::string& word, long long vertices) {
+  char* end = nullptr;
+  errno = 0;
+  const long long i = std::strtoll(word.c_str(), &end, 10);
+  const bool inRange = i > 0 ? i <= vertices : i < 0 && uint64_t(-(i + 1)) < uint64_t(vertices);
+  return !word.empty() && *end == '\0' && errno != ERANGE && inRange;
+}
+
 /// The rest of a face (line, point) statement: indices of the `vertices` defined so far
 /// (1-based, or negative counting back), at most kMaxObjFaceVertices of them.
 void checkFaceIndices(std::istringstream& words, long long vertices, const std::string& where) {
   int corners = 0;
   for (std::string word; words >> word; ++corners) {
     const std::string first = word.substr(0, word.find('/'));
-    char* end = nullptr;
-    errno = 0;
-    const long long i = std::strtoll(first.c_str(), &end, 10);
-    const bool inRange = i > 0 ? i <= vertices : i < 0 && uint64_t(-(i + 1)) < uint64_t(vertices);
-    if (first.empty() || *end != '\0' || errno == ERANGE || !inRange)
+    if (!isVertexIndex(first, vertices))
       throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
                                   std::to_string(vertices) + ", counting back)", "'" + first + "'");
   }
@@ -133,6 +141,7 @@ std::string materialText(const std::string& obj, const std::string& path) {
   return text;
 }
 
+/// An MTL colour (three numbers at c), each finite.
 glm::dvec3 finiteColour(const tinyobj::real_t* c, const std::string& where) {
   const glm::dvec3 v(c[0], c[1], c[2]);
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
@@ -228,6 +237,8 @@ std::vector<MeshFileGroup> namedGroups(std::map<int, MeshFileGroup>& groups,
   return out;
 }
 
+/// A Wavefront OBJ: its faces grouped by MTL material (the faces without one in a group of
+/// their own).
 std::vector<MeshFileGroup> readObj(const std::string& path) {
   const std::string obj = readInputFile(path, "a Wavefront OBJ file");
   checkObjText(obj, path, false);
@@ -261,13 +272,8 @@ class OffWords {
   OffWords(const std::string& text, const std::string& path) : in_(text), path_(path) {}
   std::string where() const { return path_ + ": line " + std::to_string(line_); }
   bool next(std::string& word) {
-    while (!(words_ >> word)) {
-      std::string line;
-      if (!std::getline(in_, line)) return false;
-      ++line_;
-      words_.clear();
-      words_.str(line.substr(0, line.find('#')));
-    }
+    while (!(words_ >> word))
+      if (!nextLine()) return false;
     return true;
   }
   double number(const char* what) {
@@ -285,6 +291,16 @@ class OffWords {
   void skipLine() { words_.str(""), words_.clear(); }
 
  private:
+  /// Moves on to the next line's words, its comment left out; false at the end.
+  bool nextLine() {
+    std::string line;
+    if (!std::getline(in_, line)) return false;
+    ++line_;
+    words_.clear();
+    words_.str(line.substr(0, line.find('#')));
+    return true;
+  }
+
   std::istringstream in_, words_;
   std::string path_, word_;
   int line_ = 0;

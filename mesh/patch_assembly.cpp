@@ -68,13 +68,18 @@ class Assembler {
     const double area = triangleArea(a, b, c);
     if (!(area > 0)) return;
     const int e = addFace(t).idx();
-    const Material& material = scene_.materials[size_t(scene_.surfaces[size_t(patch.surface)].material)];
-    out_.setElement(e, patch.surface, patch.side, area, material.reflectance, material.emission, normal);
-    out_.setPatch(e, int(out_.patches.size()));
+    setElement(e, patch, area, normal);
     patch.elements.push_back(e);
     patch.area += area;
     patch.centroid += area * (a + b + c) / 3.0;
     noteElement(a, b, c);
+  }
+
+  /// Element e's surface, side, area, materials, normal and patch (the one being added).
+  void setElement(int e, const Patch& patch, double area, const glm::dvec3& normal) {
+    const Material& material = scene_.materials[size_t(scene_.surfaces[size_t(patch.surface)].material)];
+    out_.setElement(e, patch.surface, patch.side, area, material.reflectance, material.emission, normal);
+    out_.setPatch(e, int(out_.patches.size()));
   }
 
   /// The smallest angle and longest edge so far, for the stats.

@@ -28,20 +28,25 @@ struct TriangleGraph {
   std::vector<int> order;  ///< triangles by centre, along u then v
 };
 
-/// Each triangle's neighbours across its edges, in the order of the edges' point ids.
-std::vector<std::vector<int>> edgeNeighbours(const std::vector<std::array<int, 3>>& triangles) {
+/// The triangles on each edge (point ids, lower first), in edge order.
+std::map<std::pair<int, int>, std::vector<int>> trianglesByEdge(const std::vector<std::array<int, 3>>& triangles) {
   std::map<std::pair<int, int>, std::vector<int>> byEdge;
   for (int k = 0; k < int(triangles.size()); ++k)
-    for (int i = 0; i < 3; ++i)
-      byEdge[std::minmax(triangles[k][i], triangles[k][(i + 1) % 3])].push_back(k);
+    for (int i = 0; i < 3; ++i) byEdge[std::minmax(triangles[k][i], triangles[k][(i + 1) % 3])].push_back(k);
+  return byEdge;
+}
+
+/// Each triangle's neighbours across its edges, in the order of the edges' point ids.
+std::vector<std::vector<int>> edgeNeighbours(const std::vector<std::array<int, 3>>& triangles) {
   std::vector<std::vector<int>> neighbours(triangles.size());
-  for (const auto& [edge, users] : byEdge)
+  for (const auto& [edge, users] : trianglesByEdge(triangles))
     for (int a : users)
       for (int b : users)
         if (a != b) neighbours[a].push_back(b);
   return neighbours;
 }
 
+/// The triangles of one piece as a graph (centres in the frame, neighbours, sweep order).
 TriangleGraph triangleGraph(const PointTable& table, const PlaneFrame& frame,
                             const std::vector<std::array<int, 3>>& triangles) {
   TriangleGraph g;

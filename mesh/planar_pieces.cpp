@@ -33,6 +33,9 @@ double planeOffset(const PlaneFrame& frame, const Polygon& polygon) {
   return off;
 }
 
+/// Whether a polygon whose farthest vertex is `off` from its plane counts as planar.
+bool isPlanar(double off, const Polygon& polygon) { return off <= kPlanarity * ringDiameter(polygon.outer); }
+
 /// The polygon of surface s as one piece, in the plane of its outer ring.
 Piece pieceOf(const Polygon& polygon, int s, bool meshFace, PointTable& table) {
   Piece piece;
@@ -73,7 +76,7 @@ void addSurfacePieces(const Surface& surface, int s, PointTable& table,
   for (const auto& polygon : surface.polygons) {
     Piece piece = pieceOf(polygon, s, surface.fromMeshFile, table);
     const double off = planeOffset(piece.frame, polygon);
-    if (off <= kPlanarity * ringDiameter(polygon.outer)) {
+    if (isPlanar(off, polygon)) {
       pieces.push_back(std::move(piece));
       continue;
     }

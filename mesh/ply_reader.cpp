@@ -56,6 +56,12 @@ uint64_t minRecordBytes(const Element& e, Format format) {
   return std::max<uint64_t>(bytes, 1);
 }
 
+/// The line without a CR at its end (a CRLF line break).
+std::string withoutCr(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
 /// The next header line (without its line break), at most kMaxHeaderLine bytes.
 bool headerLine(const std::string& bytes, size_t& at, std::string& line, const std::string& path) {
   if (at >= bytes.size()) return false;
@@ -64,8 +70,7 @@ bool headerLine(const std::string& bytes, size_t& at, std::string& line, const s
   if (end - at > kMaxHeaderLine)
     throw inputError(path, "PLY header lines of at most " + std::to_string(kMaxHeaderLine) + " bytes",
                      "a longer line");
-  line = bytes.substr(at, end - at);
-  if (!line.empty() && line.back() == '\r') line.pop_back();
+  line = withoutCr(bytes.substr(at, end - at));
   at = std::min(end + 1, bytes.size());
   return true;
 }
@@ -86,6 +91,7 @@ bool wellTyped(const Property& p) {
   return !p.name.empty() && typeSize(p.type) && p.type != "list" && (c.empty() || integerCount);
 }
 
+/// A property line: a well-typed property of the last element, named once.
 void addProperty(Header& h, std::istringstream& words, const std::string& line, const std::string& path) {
   if (h.elements.empty()) throw inputError(path, "an element before its properties", "'" + line + "'");
   const Property p = propertyOf(words);
@@ -160,6 +166,7 @@ void checkCounts(const Header& h, size_t bytes, const std::string& path) {
   if (needed > bytes - h.body) throw inputError(path, "a file as long as its header announces", "a truncated file");
 }
 
+/// The header, checked line by line and against the file's size.
 Header parseHeader(const std::string& bytes, const std::string& path) {
   Header h;
   size_t at = 0;
@@ -237,6 +244,7 @@ class BodyReader {
   const std::string& path_;
 };
 
+/// Whether p is the face element's list of vertex indices.
 bool isFaceList(const Element& e, const Property& p) {
   return e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index");
 }
@@ -252,18 +260,21 @@ size_t listLength(BodyReader& body, const Property& p, const std::string& where,
   return size_t(n);
 }
 
+/// Index v is no vertex's (of `vertices`).
+[[noreturn]] void badIndex(double v, uint64_t vertices, const std::string& where) {
+  char found[32];
+  std::snprintf(found, sizeof found, "%.17g", v);
+  throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
+                                   : std::string("no face (the file has no vertices)"), found);
+}
+
 /// A face's vertex indices: whole numbers below `vertices`.
 std::vector<int> readFaceIndices(BodyReader& body, const Property& p, size_t n, uint64_t vertices,
                                  const std::string& where) {
   std::vector<int> idx(n);
   for (size_t k = 0; k < n; ++k) {
     const double v = body.scalar(p.type, where);
-    if (v < 0 || v >= double(vertices) || v != std::floor(v)) {
-      char found[32];
-      std::snprintf(found, sizeof found, "%.17g", v);
-      throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
-                                       : std::string("no face (the file has no vertices)"), found);
-    }
+    if (v < 0 || v >= double(vertices) || v != std::floor(v)) badIndex(v, vertices, where);
     idx[k] = int(v);
   }
   return idx;
@@ -330,6 +341,7 @@ void checkFaceLists(const Element& e, const std::string& path) {
   if (faceLists > 1) throw inputError(path + ": element face", "one vertex_indices list", "two");
 }
 
+/// Every element's records, in the header's order.
 PlyPolygons readBody(const std::string& bytes, const Header& h, const std::string& path) {
   PlyPolygons out;
   out.mesh.comments = h.comments;

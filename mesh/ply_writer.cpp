@@ -9,6 +9,7 @@
 namespace rad {
 namespace {
 
+/// The PLY name of a column type.
 const char* typeName(PlyColumn::Type t) {
   switch (t) {
     case PlyColumn::Type::Float: return "float";
@@ -17,6 +18,7 @@ const char* typeName(PlyColumn::Type t) {
   }
 }
 
+/// Writes the value's bytes.
 template <class T>
 void put(std::ostream& out, T value) {
   static_assert(sizeof(T) <= 4);
@@ -25,6 +27,7 @@ void put(std::ostream& out, T value) {
   out.write(bytes, sizeof(T));
 }
 
+/// Writes v as a value of type t.
 void putValue(std::ostream& out, PlyColumn::Type t, double v) {
   switch (t) {
     case PlyColumn::Type::Float: put(out, float(v)); break;
@@ -33,6 +36,7 @@ void putValue(std::ostream& out, PlyColumn::Type t, double v) {
   }
 }
 
+/// Every column holds n values.
 void checkColumns(const std::vector<PlyColumn>& columns, size_t n) {
   for (const auto& c : columns) RAD_CHECK_EQ(c.values.size(), n);
 }

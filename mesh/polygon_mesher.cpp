@@ -34,16 +34,24 @@ using Face = CDT::Face_handle;
 /// The rings' constraint edges, as vertex pairs (lower first).
 using RingEdges = std::set<std::pair<CDT::Vertex_handle, CDT::Vertex_handle>>;
 
-/// Inserts the points as a chain of constraints, closed for a ring (whose edges go into
-/// ringEdges). A point's id is the caller's, unless another chain gave it one already.
-void insertChain(CDT& cdt, const std::vector<glm::dvec2>& points, const std::vector<int>& ids,
-                 bool closed, RingEdges& ringEdges) {
+/// Inserts the points; a point's id is the caller's, unless it has one already and the
+/// caller's is -1.
+std::vector<CDT::Vertex_handle> insertPoints(CDT& cdt, const std::vector<glm::dvec2>& points,
+                                             const std::vector<int>& ids) {
   std::vector<CDT::Vertex_handle> vs;
   for (size_t k = 0; k < points.size(); ++k) {
     auto v = cdt.insert(K::Point_2(points[k].x, points[k].y));
     if (ids[k] >= 0 || v->info().id < 0) v->info().id = ids[k];
     vs.push_back(v);
   }
+  return vs;
+}
+
+/// Inserts the points as a chain of constraints, closed for a ring (whose edges go into
+/// ringEdges). A point's id is the caller's, unless another chain gave it one already.
+void insertChain(CDT& cdt, const std::vector<glm::dvec2>& points, const std::vector<int>& ids,
+                 bool closed, RingEdges& ringEdges) {
+  const std::vector<CDT::Vertex_handle> vs = insertPoints(cdt, points, ids);
   for (size_t k = 0; k + (closed ? 0 : 1) < vs.size(); ++k) {
     auto a = vs[k], b = vs[(k + 1) % vs.size()];
     if (a == b) continue;
@@ -159,9 +167,15 @@ Triangulation2 extract(const CDT& cdt) {
   return out;
 }
 
+/// The angle at a of the triangle a, b, c (radians).
 double angleAt(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   glm::dvec2 u = b - a, v = c - a;
   return std::atan2(std::abs(u.x * v.y - u.y * v.x), u.x * v.x + u.y * v.y);
+}
+
+/// Whether a, b, c turn counter-clockwise.
+bool turnsLeft(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) > 0;
 }
 
 /// A lone triangle that needs no CGAL at all: no longer than maxEdge and, unless it is a face
@@ -177,8 +191,7 @@ bool isGoodTriangle(const Polygon2& p, double maxEdge, bool meshFace) {
     double len = std::hypot(r[i].x - r[(i + 1) % 3].x, r[i].y - r[(i + 1) % 3].y);
     if (len > maxEdge || (!meshFace && (a < lo || a > hi))) return false;
   }
-  double cross = (r[1].x - r[0].x) * (r[2].y - r[0].y) - (r[1].y - r[0].y) * (r[2].x - r[0].x);
-  return cross > 0;
+  return turnsLeft(r[0], r[1], r[2]);
 }
 
 /// The polygon, a lone triangle, as its own triangulation.

@@ -41,6 +41,7 @@ bool splitColumns(const std::string& line, std::vector<std::string>& out) {
   return !quoted;
 }
 
+/// The field as a finite number (`column` names it in messages).
 double number(const std::string& text, const std::string& where, const char* column) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -65,6 +66,7 @@ void checkPoint(const double (&v)[kColumns], const std::vector<std::string>& f,
     if (v[k] < 0) throw inputError(where + ": " + kColumnNames[k], "a value >= 0", f[size_t(k)]);
 }
 
+/// The fields of a data line as a point, checked.
 ReferencePoint parsePoint(const std::vector<std::string>& f, const std::string& where) {
   double v[kColumns] = {};
   for (int k = 0; k < kColumns; ++k)

@@ -112,8 +112,7 @@ class Bisector {
   void bisect(Mesh::FaceHandle f) {
     for (;;) {
       auto e = longest(m_, f);
-      auto h = m_.halfedge_handle(e, 0);
-      auto g = m_.face_handle(h) == f ? m_.opposite_face_handle(h) : m_.face_handle(h);
+      auto g = across(f, e);
       if (!g.is_valid() || longest(m_, g) == e) {
         split(e);
         return;
@@ -125,6 +124,20 @@ class Bisector {
   int added() const { return added_; }
 
  private:
+  /// The element beside f across its edge e (invalid on a boundary).
+  Mesh::FaceHandle across(Mesh::FaceHandle f, Mesh::EdgeHandle e) const {
+    auto h = m_.halfedge_handle(e, 0);
+    return m_.face_handle(h) == f ? m_.opposite_face_handle(h) : m_.face_handle(h);
+  }
+
+  /// An element beside h whose longest edge is another one (the second if both), or none.
+  Mesh::FaceHandle sideWithLongerEdge(Mesh::HalfedgeHandle h) const {
+    Mesh::FaceHandle shorter;
+    for (Mesh::FaceHandle f : {Mesh::FaceHandle(m_.face_handle(h)), Mesh::FaceHandle(m_.opposite_face_handle(h))})
+      if (f.is_valid() && longest(m_, f) != m_.edge_handle(h)) shorter = f;
+    return shorter;
+  }
+
   /// Splits the edge from a to b at its midpoint, bisecting the element beside it until that
   /// edge is its longest (within its surface side, conformingly as ever).
   void splitEdgeBetween(Mesh::VertexHandle a, Mesh::VertexHandle b) {
@@ -134,9 +147,7 @@ class Bisector {
       auto e = m_.edge_handle(h);
       // Both elements beside the edge must have it as their longest, or the split would cut
       // one across a shorter edge (and break the angle bound).
-      Mesh::FaceHandle shorter;
-      for (auto f : {m_.face_handle(h), m_.opposite_face_handle(h)})
-        if (f.is_valid() && longest(m_, f) != e) shorter = f;
+      const Mesh::FaceHandle shorter = sideWithLongerEdge(h);
       if (!shorter.is_valid()) {
         split(e);
         return;
@@ -149,6 +160,12 @@ class Bisector {
   /// corners) between the same two points are split too: no T-junction where surfaces meet
   /// (a wall on a floor, a board along a line across it), no crack for light to leak through.
   void splitTwins(Mesh::VertexHandle a, Mesh::VertexHandle b) {
+    for (auto [a2, b2] : twinsOf(a, b)) splitEdgeBetween(a2, b2);
+  }
+
+  /// The other edges between the points of a and b (vertices of other surfaces at them).
+  std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twinsOf(Mesh::VertexHandle a,
+                                                                          Mesh::VertexHandle b) const {
     std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twins;
     auto [lo, hi] = at_.equal_range(m_.point(a));
     for (auto it = lo; it != hi; ++it) {
@@ -160,7 +177,7 @@ class Bisector {
         if (b2 != b && m_.find_halfedge(a2, b2).is_valid()) twins.emplace_back(a2, b2);
       }
     }
-    for (auto [a2, b2] : twins) splitEdgeBetween(a2, b2);
+    return twins;
   }
 
   /// The faces on either side of h, which keep their handles as one half, with their areas
@@ -172,6 +189,13 @@ class Bisector {
       if (f.is_valid()) halved.emplace_back(f, pm_.area(f.idx()) * 0.5);
     }
     return halved;
+  }
+
+  /// The normal of a new vertex on the edge from a to b: it lies on the edge, so it takes
+  /// the edge's mean normal.
+  OpenMesh::Vec3d edgeNormal(Mesh::VertexHandle a, Mesh::VertexHandle b) const {
+    auto n = m_.normal(a) + m_.normal(b);
+    return n.norm() > 0 ? n.normalized() : n;
   }
 
   /// Splits edge e at its midpoint (and the same edge of other surfaces: splitTwins).
@@ -188,9 +212,7 @@ class Bisector {
     // The new faces are the parents' other halves: they copied the parent's area.
     for (size_t k = facesBefore; k < m_.n_faces(); ++k) pm_.setArea(int(k), pm_.area(int(k)) * 0.5);
     added_ += int(m_.n_faces() - facesBefore);
-    // The new vertex lies on the edge, so it takes the edge's mean normal.
-    auto n = m_.normal(a) + m_.normal(b);
-    m_.set_normal(v, n.norm() > 0 ? n.normalized() : n);
+    m_.set_normal(v, edgeNormal(a, b));
     at_.emplace(mid, v.idx());
     splitTwins(a, b);
   }

@@ -45,21 +45,26 @@ void readPlacement(const Node& n, Light& l) {
   if (l.type != Light::Type::Directional) l.position = required(n, "position").vec3();
 }
 
+/// Attenuation coefficients kc, kl, kq: >= 0, not all zero.
+glm::dvec3 readAttenuation(const Node& a) {
+  const glm::dvec3 k = nonNegativeRgb(a, "an attenuation coefficient >= 0");
+  if (k == glm::dvec3(0.0)) a.fail("at least one non-zero coefficient");
+  return k;
+}
+
 /// The light's colours, attenuation and spot cone.
 void readShining(const Node& n, Light& l) {
   if (n.has("ambient")) l.ambient = n["ambient"].color();
   if (n.has("diffuse")) l.diffuse = n["diffuse"].color();
   if (n.has("specular")) l.specular = n["specular"].color();
-  if (n.has("attenuation")) {
-    l.attenuation = nonNegativeRgb(n["attenuation"], "an attenuation coefficient >= 0");
-    if (l.attenuation == glm::dvec3(0.0)) n["attenuation"].fail("at least one non-zero coefficient");
-  }
+  if (n.has("attenuation")) l.attenuation = readAttenuation(n["attenuation"]);
   if (l.type == Light::Type::Spot) {
     l.cutoffDeg = required(n, "cutoff_deg").number(0, 90, "[0, 90]");
     if (n.has("exponent")) l.exponent = n["exponent"].number(0, 128, "[0, 128]");
   }
 }
 
+/// One light: its type, then the keys that type accepts.
 Light readLight(const Node& n) {
   if (!n.value().is_object()) n.fail("an object");
   if (!n.has("type")) n.failWith("a \"type\" key", "none");

@@ -31,6 +31,13 @@ void readLocalModel(const Node& n, Material& m) {
   if (n.has("shininess")) m.shininess = n["shininess"].number(0, 128, "[0, 128]");
 }
 
+/// A reflectance taken from a diffuse colour is in [0, 1) too.
+void checkUsableDiffuse(const Node& n, const glm::dvec3& reflectance) {
+  for (int i = 0; i < 3; ++i)
+    if (!(reflectance[i] >= 0 && reflectance[i] < 1))
+      n.failWith("a diffuse colour usable as reflectance, in [0, 1)", std::to_string(reflectance[i]));
+}
+
 /// The reflectance: given, or from the preset or diffuse colour, in [0, 1) either way.
 void readReflectance(const Node& n, Material& m) {
   if (n.has("reflectance")) {
@@ -38,12 +45,10 @@ void readReflectance(const Node& n, Material& m) {
   } else if (!n.has("preset") && !n.has("diffuse")) {
     n.failWith("\"reflectance\", \"diffuse\" or \"preset\"", "none of them");
   }
-  for (int i = 0; i < 3; ++i)
-    if (!(m.reflectance[i] >= 0 && m.reflectance[i] < 1))
-      n.failWith("a diffuse colour usable as reflectance, in [0, 1)",
-                 std::to_string(m.reflectance[i]));
+  checkUsableDiffuse(n, m.reflectance);
 }
 
+/// One named material: preset, local-model colours, reflectance and emission.
 Material readMaterial(const Node& n, const std::string& name) {
   n.expectObject({"reflectance", "emission", "preset", "ambient", "diffuse", "specular",
                   "shininess"});
