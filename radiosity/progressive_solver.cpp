@@ -24,6 +24,13 @@ double channels<double>(const glm::dvec3& v) { return v.x; }
 template <>
 glm::dvec3 channels<glm::dvec3>(const glm::dvec3& v) { return v; }
 
+/// The power a sample gathers from its elements: Σ weight · area · value.
+glm::dvec3 weightedPower(const ShooterSample& s, const std::vector<double>& area, const std::vector<glm::dvec3>& value) {
+  glm::dvec3 power(0.0);
+  for (size_t k = 0; k < s.elements.size(); ++k) power += s.weights[k] * area[s.elements[k]] * value[s.elements[k]];
+  return power;
+}
+
 }  // namespace
 
 double EnergyLedger::residual() const {
@@ -129,10 +136,15 @@ bool ProgressiveSolver::step() {
   return shot;
 }
 
+ProgressiveSolver::Stop ProgressiveSolver::stopCondition() const {
+  if (unshotFraction() < options_.tolerance) return Stop::Tolerance;
+  if (options_.maxShots > 0 && shots_ >= options_.maxShots) return Stop::MaxShots;
+  if (options_.timeLimit > 0 && seconds() >= options_.timeLimit) return Stop::TimeLimit;
+  return Stop::None;
+}
+
 bool ProgressiveSolver::stepOnce() {
-  if (unshotFraction() < options_.tolerance) stop_ = Stop::Tolerance;
-  else if (options_.maxShots > 0 && shots_ >= options_.maxShots) stop_ = Stop::MaxShots;
-  else if (options_.timeLimit > 0 && seconds() >= options_.timeLimit) stop_ = Stop::TimeLimit;
+  stop_ = stopCondition();
   if (stop_ != Stop::None) return false;
   int patch = pickShooter();
   if (patch < 0) {  // nothing left to shoot at all
@@ -184,10 +196,8 @@ void ProgressiveSolver::samplePowers(int patch, std::vector<glm::dvec3>& powers,
   emitted = powers;
   for (size_t index = 0; index < samples.size(); ++index) {
     const ShooterSample& s = samples[index];
-    for (size_t k = 0; k < s.elements.size(); ++k) {
-      powers[index] += s.weights[k] * area_[s.elements[k]] * dB_[s.elements[k]];
-      emitted[index] += s.weights[k] * area_[s.elements[k]] * dE_[s.elements[k]];
-    }
+    powers[index] = weightedPower(s, area_, dB_);
+    emitted[index] = weightedPower(s, area_, dE_);
     powers[index] *= omega;
     emitted[index] *= omega;
   }

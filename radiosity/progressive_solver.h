@@ -71,6 +71,8 @@ class ProgressiveSolver {
   /// Per patch: its unshot power, and the running unshot total.
   void sumPatchUnshot();
   int pickShooter() const;
+  /// The stop the options call for now (tolerance, shots, time), or Stop::None.
+  Stop stopCondition() const;
   bool stepOnce();
   void shoot(int patch);
   /// The power each of the patch's samples sends (ω times its elements' unshot power), and

@@ -17,25 +17,51 @@
 
 namespace rad {
 
-double autoExposure(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
+namespace {
+
+/// The (luminance, area) of every element that does not emit, by luminance; `total` their area.
+std::vector<std::pair<double, double>> sortedLuminances(const PatchMesh& m, const std::vector<glm::dvec3>& B,
+                                                        double& total) {
   std::vector<std::pair<double, double>> lumArea;  // (luminance, area)
-  double total = 0;
+  total = 0;
   for (int e = 0; e < m.elementCount(); ++e) {
     if (luminance(m.emission(e)) > 0) continue;
     lumArea.emplace_back(luminance(B[e]), m.area(e));
     total += m.area(e);
   }
   std::sort(lumArea.begin(), lumArea.end());
+  return lumArea;
+}
+
+/// The luminance below which kExposurePercentile of the area lies.
+double percentileLuminance(const std::vector<std::pair<double, double>>& lumArea, double total) {
   double seen = 0, reference = 0;
   for (const auto& [lum, area] : lumArea) {
     seen += area;
     reference = lum;
     if (seen >= kExposurePercentile * total) break;
   }
+  return reference;
+}
+
+}  // namespace
+
+double autoExposure(const PatchMesh& m, const std::vector<glm::dvec3>& B) {
+  double total = 0;
+  const std::vector<std::pair<double, double>> lumArea = sortedLuminances(m, B, total);
+  const double reference = percentileLuminance(lumArea, total);
   return reference > 0 ? kExposureTarget / reference : 1.0;
 }
 
 namespace {
+
+/// The vertex indices of a face's three corners.
+std::array<int, 3> cornerIndices(const PatchMesh& m, OpenMesh::FaceHandle f) {
+  std::array<int, 3> corners;
+  int k = 0;
+  for (auto v : m.mesh.fv_range(f)) corners[size_t(k++)] = v.idx();
+  return corners;
+}
 
 /// The patch mesh's geometry as the result file holds it: vertex positions and normals, the
 /// elements' corners and their scene surfaces.
@@ -45,12 +71,7 @@ ResultFile resultGeometry(const PatchMesh& m) {
     r.positions.push_back(glm::vec3(PatchMesh::toGlm(m.mesh.point(v))));
     r.vertexNormal.push_back(glm::vec3(PatchMesh::toGlm(m.mesh.normal(v))));
   }
-  for (auto f : m.mesh.faces()) {
-    std::array<int, 3> corners;
-    int k = 0;
-    for (auto v : m.mesh.fv_range(f)) corners[size_t(k++)] = v.idx();
-    r.faces.push_back(corners);
-  }
+  for (auto f : m.mesh.faces()) r.faces.push_back(cornerIndices(m, f));
   for (int e = 0; e < m.elementCount(); ++e) r.faceSurface.push_back(m.surface(e));
   return r;
 }
@@ -84,6 +105,20 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
 /// Result positions are stored as float: points agree to this times the scene size.
 constexpr double kSameGeometry = 1e-5;
 
+namespace {
+
+/// Whether the result's face e has the mesh's element e's corners, to within `tolerance`.
+bool sameCorners(const ResultFile& result, const PatchMesh& mesh, int e, double tolerance) {
+  const auto corners = mesh.corners(e);
+  for (size_t k = 0; k < 3; ++k) {
+    const glm::dvec3 p(result.positions[size_t(result.faces[size_t(e)][k])]);
+    if (glm::length(p - corners[k]) > tolerance) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<glm::dvec3> readResultRadiosity(const std::string& path, const PatchMesh& mesh,
                                             double sceneSize) {
   const ResultFile result = readResultFile(path);
@@ -92,14 +127,9 @@ std::vector<glm::dvec3> readResultRadiosity(const std::string& path, const Patch
   if (int(result.faces.size()) != n)
     throw inputError(path, expected + " (" + std::to_string(n) + " elements)",
                      std::to_string(result.faces.size()) + " faces");
-  for (int e = 0; e < n; ++e) {
-    const auto corners = mesh.corners(e);
-    for (size_t k = 0; k < 3; ++k) {
-      const glm::dvec3 p(result.positions[size_t(result.faces[size_t(e)][k])]);
-      if (glm::length(p - corners[k]) > kSameGeometry * sceneSize)
-        throw inputError(path, expected, "element " + std::to_string(e) + " elsewhere");
-    }
-  }
+  for (int e = 0; e < n; ++e)
+    if (!sameCorners(result, mesh, e, kSameGeometry * sceneSize))
+      throw inputError(path, expected, "element " + std::to_string(e) + " elsewhere");
   return result.faceRadiosity;
 }
 

@@ -30,6 +30,12 @@ int emittingPatches(const PatchMesh& mesh) {
   return emitting;
 }
 
+/// The warning that refinement is off because the emitters are too many for rays.
+std::string tooManyEmitters(int emitting) {
+  return "adaptive subdivision off: " + std::to_string(emitting) + " emitting patches, more than the " +
+         std::to_string(kMaxRayEmitterPatches) + " rays are cast to; the hemicubes' direct light is shown";
+}
+
 /// Without rays there is no refinement to grade the contact lines: they are graded by the
 /// mesher instead, as with adaptive refinement off (the mesh is built again if that differs).
 void meshWithoutRays(MeshedScene& s) {
@@ -40,9 +46,7 @@ void meshWithoutRays(MeshedScene& s) {
   if (graded.mesh().contactGrading != s.settings.mesh().contactGrading)
     s.mesh = buildPatchMesh(s.scene, graded.mesh());
   s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-  s.mesh.warnings.push_back("adaptive subdivision off: " + std::to_string(emitting) +
-                            " emitting patches, more than the " + std::to_string(kMaxRayEmitterPatches) +
-                            " rays are cast to; the hemicubes' direct light is shown");
+  s.mesh.warnings.push_back(tooManyEmitters(emitting));
 }
 
 AdaptiveOptions adaptiveOptions(const Settings& settings) {
@@ -77,6 +81,17 @@ void lightVertices(MeshedScene& s) {
   else
     s.direct->update(s.mesh);
   if (!s.settings.vertexDirect) s.direct.reset();
+}
+
+/// Sets every negative channel to 0; the number of elements that had one.
+int clampNegative(std::vector<glm::dvec3>& B) {
+  int clamped = 0;
+  for (auto& x : B)
+    if (x.x < 0 || x.y < 0 || x.z < 0) {
+      ++clamped;
+      x = glm::max(x, glm::dvec3(0.0));
+    }
+  return clamped;
 }
 
 }  // namespace
@@ -134,11 +149,7 @@ Solution RadiositySolve::bake() const {
   const bool raysShowEmission = bool(scene_.direct);
   b.ambient = b.converged ? glm::dvec3(0.0) : glm::max(solver_.ambient(raysShowEmission), glm::dvec3(0.0));
   b.B = solver_.radiosity();
-  for (auto& x : b.B)
-    if (x.x < 0 || x.y < 0 || x.z < 0) {
-      ++b.clamped;
-      x = glm::max(x, glm::dvec3(0.0));
-    }
+  b.clamped = clampNegative(b.B);
   if (scene_.direct) b.direct = VertexDirect{solver_.direct(), scene_.direct->radiosity(), scene_.base.get()};
   return b;
 }

@@ -48,7 +48,27 @@ struct ConvergenceOptions {
 struct Curve {
   Series series;
   std::vector<long> steps;  ///< shots or sweeps
+
+  /// One history row: the time, the error and the shots or sweeps so far.
+  void add(double seconds, double error, long step) {
+    series.points.push_back({seconds, error});
+    steps.push_back(step);
+  }
 };
+
+/// Whether a run at `shots` is due for a history row; moves `next` on when it is.
+bool rowDue(long shots, long& next) {
+  if (shots < next) return false;
+  next = std::max(next + 1, long(next * kRowGrowth));
+  return true;
+}
+
+/// The emission of every element: the gathering sweeps' start.
+std::vector<glm::dvec3> emissionOf(const PatchMesh& mesh) {
+  std::vector<glm::dvec3> E(mesh.elementCount());
+  for (int e = 0; e < mesh.elementCount(); ++e) E[e] = mesh.emission(e);
+  return E;
+}
 
 double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -73,14 +93,10 @@ Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSou
     return truth.measure(shownVertexRadiosity(mesh, solver.radiosity(), a, nullptr)).rms;
   };
   long next = 1;
-  c.series.points.push_back({0, error()});
-  c.steps.push_back(0);
-  while (solver.step()) {
-    if (solver.shots() < next) continue;
-    next = std::max(next + 1, long(next * kRowGrowth));
-    c.series.points.push_back({solver.seconds(), error()});  // the solver's own time: measuring is not in it
-    c.steps.push_back(solver.shots());
-  }
+  c.add(0, error(), 0);
+  while (solver.step())
+    if (rowDue(solver.shots(), next))
+      c.add(solver.seconds(), error(), solver.shots());  // the solver's own time: measuring is not in it
   return c;
 }
 
@@ -88,17 +104,13 @@ Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSou
 Curve gatheringCurve(const std::string& name, const TransportMatrix& system, double start,
                      bool gaussSeidel, const PatchMesh& mesh, const TrueError& truth) {
   Curve c{{name, {}}, {}};
-  std::vector<glm::dvec3> E(mesh.elementCount());
-  for (int e = 0; e < mesh.elementCount(); ++e) E[e] = mesh.emission(e);
-  c.series.points.push_back({start, truth.measure(vertexRadiosity(mesh, E)).rms});
-  c.steps.push_back(0);
+  c.add(start, truth.measure(vertexRadiosity(mesh, emissionOf(mesh))).rms, 0);
   double measuring = 0, last = HUGE_VAL;
   auto t0 = std::chrono::steady_clock::now();
   auto record = [&](int sweep, const std::vector<glm::dvec3>& B) {
     auto m0 = std::chrono::steady_clock::now();
     const double e = truth.measure(vertexRadiosity(mesh, B)).rms;
-    c.series.points.push_back({start + seconds(t0) - measuring, e});
-    c.steps.push_back(sweep);
+    c.add(start + seconds(t0) - measuring, e, sweep);
     measuring += seconds(m0);
     const bool settled = std::abs(e - last) < 1e-5 * e;
     last = e;
@@ -109,14 +121,25 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
   return c;
 }
 
+/// The flags of the variants' one uniform mesh: the user's, without refinement or vertex direct light.
+SolverBlock uniformFlags(SolverBlock flags) {
+  flags.adaptive = false;
+  flags.vertexDirect = false;
+  return flags;
+}
+
+/// The name of the overshooting curve, with its ω.
+std::string overshootingName(double overshoot) {
+  char name[80];
+  std::snprintf(name, sizeof name, "overshooting w=%.2g", overshoot);
+  return name;
+}
+
 /// Plain, ambient and overshooting progressive refinement, Jacobi and Gauss–Seidel on one
 /// uniform mesh's factors, one thread each; element values shown through vertexRadiosity.
 std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const std::vector<ReferencePoint>& points) {
   const std::string& reference = o.reference;
-  SolverBlock flags = o.flags;
-  flags.adaptive = false;
-  flags.vertexDirect = false;
-  const MeshedScene meshed = meshQuietly(std::move(scene), flags);
+  const MeshedScene meshed = meshQuietly(std::move(scene), uniformFlags(o.flags));
   const PatchMesh& mesh = meshed.mesh;
   const TrueError truth(mesh, meshed.scene, points, reference);
   SolverOptions options = solverOptions(meshed.settings);
@@ -127,8 +150,7 @@ std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const
   SolverOptions overshooting = options;
   overshooting.overshoot = o.flags.overshoot.value_or(kOvershootCurve);
   options.overshoot = 1;  // the plain curves shoot plainly, whatever the settings say
-  char name[80];
-  std::snprintf(name, sizeof name, "overshooting w=%.2g", overshooting.overshoot);
+  const std::string name = overshootingName(overshooting.overshoot);
   std::vector<Curve> curves;
   curves.push_back(progressiveCurve("progressive", mesh, *factors, options, false, truth));
   curves.push_back(progressiveCurve("progressive + ambient", mesh, *factors, options, true, truth));
@@ -166,6 +188,13 @@ std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
   return rungs;
 }
 
+/// The rung's line on stderr: its mesh, its times and its final true error.
+void printRung(const Rung& rung, const MeshedScene& meshed, double meshing, const Curve& c) {
+  std::fprintf(stderr, "  %-20s %6d elements, meshing %.2f s, %.2f s in all, true error %.2f %%\n",
+               rung.name.c_str(), meshed.mesh.elementCount(), meshing, c.series.points.back().first,
+               100 * c.series.points.back().second);
+}
+
 /// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays
 /// and refinement; the error of what a viewer shows at each history row.
 Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points,
@@ -179,32 +208,29 @@ Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<Refere
   const TrueError truth(meshed.mesh, meshed.scene, points, reference);
   RadiositySolve solve(meshed);
   const ProgressiveSolver& solver = solve.solver();
-  auto record = [&] {
-    c.series.points.push_back({meshing + solver.seconds(), trueErrorNow(solve, meshed, truth).rms});
-    c.steps.push_back(solver.shots());
-  };
+  auto record = [&] { c.add(meshing + solver.seconds(), trueErrorNow(solve, meshed, truth).rms, solver.shots()); };
   long next = 1;
-  while (solve.step()) {
-    if (solver.shots() < next) continue;
-    next = std::max(next + 1, long(next * kRowGrowth));
-    record();
-  }
+  while (solve.step())
+    if (rowDue(solver.shots(), next)) record();
   record();
-  std::fprintf(stderr, "  %-20s %6d elements, meshing %.2f s, %.2f s in all, true error %.2f %%\n",
-               rung.name.c_str(), meshed.mesh.elementCount(), meshing, c.series.points.back().first,
-               100 * c.series.points.back().second);
+  printRung(rung, meshed, meshing, c);
   return c;
+}
+
+/// Every point of every curve, by time (then error).
+std::vector<std::pair<double, double>> pointsByTime(const std::vector<Curve>& curves) {
+  std::vector<std::pair<double, double>> all;
+  for (const auto& c : curves) all.insert(all.end(), c.series.points.begin(), c.series.points.end());
+  std::sort(all.begin(), all.end());
+  return all;
 }
 
 /// The lowest error reached by any ladder curve by each time: the fastest setting per error.
 Curve front(const std::vector<Curve>& curves) {
-  std::vector<std::pair<double, double>> all;
-  for (const auto& c : curves) all.insert(all.end(), c.series.points.begin(), c.series.points.end());
-  std::sort(all.begin(), all.end());
   Curve f{{"front (ladder)", {}}, {}};
   double best = HUGE_VAL;
-  for (const auto& [t, e] : all)
-    if (e < best) best = e, f.series.points.push_back({t, e}), f.steps.push_back(0);
+  for (const auto& [t, e] : pointsByTime(curves))
+    if (e < best) best = e, f.add(t, e, 0);
   return f;
 }
 
@@ -231,14 +257,28 @@ std::string csvOf(const Curves& curves) {
   return csv.str();
 }
 
-std::string svgOf(const Curves& curves, const std::string& reference) {
+/// The curves as plot series, the ladder's names marked as such.
+std::vector<Series> plotSeries(const Curves& curves) {
   std::vector<Series> series;
   for (const auto& [group, c] : curves) {
     series.push_back(c.series);
     series.back().name = (group == "ladder" ? "ladder: " : "") + c.series.name;
   }
+  return series;
+}
+
+std::string svgOf(const Curves& curves, const std::string& reference) {
+  const std::vector<Series> series = plotSeries(curves);
   return svgLogPlot("True error (RMS relative, vs " + reference + ") against run time", "seconds", "true error",
                     series);
+}
+
+/// Each curve's last true error, time and step count on stderr.
+void printSummary(const Curves& curves) {
+  for (const auto& [group, c] : curves)
+    std::fprintf(stderr, "  %-7s %-24s true error %.2f %% after %.2f s (%ld steps)\n", group.c_str(),
+                 c.series.name.c_str(), 100 * c.series.points.back().second, c.series.points.back().first,
+                 c.steps.back());
 }
 
 void runConvergence(const ConvergenceOptions& o) {
@@ -254,10 +294,7 @@ void runConvergence(const ConvergenceOptions& o) {
   const std::string svg = svgOf(curves, o.reference);
   writeFileAtomically(o.output, [&](std::ostream& out) { out << svg; });
   if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csvOf(curves); });
-  for (const auto& [group, c] : curves)
-    std::fprintf(stderr, "  %-7s %-24s true error %.2f %% after %.2f s (%ld steps)\n", group.c_str(),
-                 c.series.name.c_str(), 100 * c.series.points.back().second, c.series.points.back().first,
-                 c.steps.back());
+  printSummary(curves);
 }
 
 }  // namespace

@@ -27,9 +27,8 @@ struct FormFactorOptions {
   SolverBlock flags;
 };
 
-/// The point of a surface to look from: the centroid of its element nearest to its area
-/// centroid (so it lies on the surface even when the surface is not convex).
-int centralElement(const PatchMesh& mesh, int surface) {
+/// The area-weighted centroid of a surface's front-side elements.
+glm::dvec3 areaCentroid(const PatchMesh& mesh, int surface) {
   glm::dvec3 c(0.0);
   double area = 0;
   for (int e = 0; e < mesh.elementCount(); ++e)
@@ -37,7 +36,13 @@ int centralElement(const PatchMesh& mesh, int surface) {
       c += mesh.area(e) * mesh.centroid(e);
       area += mesh.area(e);
     }
-  c /= area;
+  return c /= area;
+}
+
+/// The point of a surface to look from: the centroid of its element nearest to its area
+/// centroid (so it lies on the surface even when the surface is not convex).
+int centralElement(const PatchMesh& mesh, int surface) {
+  const glm::dvec3 c = areaCentroid(mesh, surface);
   int best = -1;
   double bestDist = HUGE_VAL;
   for (int e = 0; e < mesh.elementCount(); ++e)
@@ -60,6 +65,14 @@ struct Viewpoint {
   int fromSurface = -1;
 };
 
+/// The elements of one surface (both sides).
+std::vector<int> elementsOf(const PatchMesh& mesh, int surface) {
+  std::vector<int> elements;
+  for (int k = 0; k < mesh.elementCount(); ++k)
+    if (mesh.surface(k) == surface) elements.push_back(k);
+  return elements;
+}
+
 /// The middle of the surface named `name` (--from).
 Viewpoint surfaceViewpoint(const Scene& scene, const PatchMesh& mesh, const std::string& name) {
   Viewpoint view;
@@ -75,9 +88,16 @@ Viewpoint surfaceViewpoint(const Scene& scene, const PatchMesh& mesh, const std:
   view.x = mesh.centroid(e);
   view.n = mesh.normal(e);
   view.shooter = uint64_t(e);
-  for (int k = 0; k < mesh.elementCount(); ++k)
-    if (mesh.surface(k) == view.fromSurface) view.excluded.push_back(k);
+  view.excluded = elementsOf(mesh, view.fromSurface);
   return view;
+}
+
+/// Refuses a --point that is not finite and a --normal that is zero or not finite.
+void checkPointAndNormal(const std::vector<double>& point, const glm::dvec3& normal) {
+  for (double c : point)
+    if (!std::isfinite(c)) throw inputError("--point", "finite coordinates", "NaN or infinity");
+  if (!(glm::length(normal) > 0) || !std::isfinite(glm::length(normal)))
+    throw inputError("--normal", "a non-zero finite vector", "a zero or non-finite one");
 }
 
 /// The point and normal given by --point and --normal.
@@ -85,12 +105,20 @@ Viewpoint pointViewpoint(const FormFactorOptions& o) {
   Viewpoint view;
   view.x = vec3(o.point);
   view.n = vec3(o.normal);
-  for (double c : o.point)
-    if (!std::isfinite(c)) throw inputError("--point", "finite coordinates", "NaN or infinity");
-  if (!(glm::length(view.n) > 0) || !std::isfinite(glm::length(view.n)))
-    throw inputError("--normal", "a non-zero finite vector", "a zero or non-finite one");
+  checkPointAndNormal(o.point, view.n);
   view.n = glm::normalize(view.n);
   return view;
+}
+
+/// The factor of the surface drawn `alone` on its own hemicube: its pixels when nothing occludes it.
+double aloneFactor(const HemicubeGeometry& alone, const Settings& settings, const Scene& scene,
+                   const Viewpoint& view, double rotation) {
+  Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
+  FormFactors ffAlone;
+  single.compute(view.x, view.n, rotation, ffAlone);
+  double fAlone = 0;
+  for (double f : ffAlone.factors) fAlone += f;
+  return fAlone;
 }
 
 /// Surface s's row: its hemicube factor (`hemicube`, in the full scene) and, when drawing it
@@ -106,11 +134,7 @@ nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, con
     if (glm::dot(mesh.normal(e), view.x - c[0]) > 0)  // only the lit side receives
       exact += pointPolygonFormFactor(view.x, view.n, {c[0], c[1], c[2]});
   }
-  Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
-  FormFactors ffAlone;
-  single.compute(view.x, view.n, rotation, ffAlone);
-  double fAlone = 0;
-  for (double f : ffAlone.factors) fAlone += f;
+  const double fAlone = aloneFactor(alone, settings, scene, view, rotation);
   nlohmann::ordered_json row;
   row["index"] = s;
   row["name"] = scene.surfaces[s].name;
@@ -143,6 +167,13 @@ nlohmann::ordered_json summary(const Scene& scene, const PatchMesh& mesh, const 
   return out;
 }
 
+/// The full hemicube's factors summed per surface.
+std::vector<double> perSurfaceFactors(const FormFactors& ff, const PatchMesh& mesh, size_t surfaces) {
+  std::vector<double> perSurface(surfaces, 0.0);
+  for (size_t k = 0; k < ff.elements.size(); ++k) perSurface[mesh.surface(ff.elements[k])] += ff.factors[k];
+  return perSurface;
+}
+
 void runFormFactors(const FormFactorOptions& o) {
   Scene scene = loadScene(o.scene);
   Settings settings = resolveSettings(scene, o.flags);
@@ -157,8 +188,7 @@ void runFormFactors(const FormFactorOptions& o) {
   Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
   FormFactors ff;
   hemicube.compute(view.x, view.n, rotation, ff, view.excluded);
-  std::vector<double> perSurface(scene.surfaces.size(), 0.0);
-  for (size_t k = 0; k < ff.elements.size(); ++k) perSurface[mesh.surface(ff.elements[k])] += ff.factors[k];
+  const std::vector<double> perSurface = perSurfaceFactors(ff, mesh, scene.surfaces.size());
 
   nlohmann::ordered_json out = summary(scene, mesh, settings, view, ff);
   for (size_t s = 0; s < scene.surfaces.size(); ++s)

@@ -22,17 +22,30 @@ std::string rgb(const glm::dvec3& c) {
   return buf;
 }
 
+/// The materials table.
+void printMaterials(const Scene& scene) {
+  std::printf("\nmaterials\n");
+  for (const auto& m : scene.materials)
+    std::printf("  %-16s reflectance %-22s emission %-22s%s%s\n", m.name.c_str(),
+                rgb(m.reflectance).c_str(), rgb(m.emission).c_str(),
+                m.preset.empty() ? "" : " preset ", m.preset.c_str());
+}
+
 void printScene(const Scene& scene, const Settings& settings) {
   std::printf("scene       %s%s%s\n", scene.path.c_str(), scene.units.empty() ? "" : ", units ",
               scene.units.c_str());
   std::printf("size        diagonal %.6g\n", scene.diagonal());
   std::printf("meshing     max element edge %.6g, max patch edge %.6g\n", settings.maxElementEdge,
               settings.maxPatchEdge);
-  std::printf("\nmaterials\n");
-  for (const auto& m : scene.materials)
-    std::printf("  %-16s reflectance %-22s emission %-22s%s%s\n", m.name.c_str(),
-                rgb(m.reflectance).c_str(), rgb(m.emission).c_str(),
-                m.preset.empty() ? "" : " preset ", m.preset.c_str());
+  printMaterials(scene);
+}
+
+/// The totals of the surface table: counts, then areas.
+void printTotals(const Scene& scene, const PatchMesh& mesh, double total, double emitting) {
+  std::printf("\ntotals      %zu surfaces, %zu patches, %d elements, %zu vertices\n",
+              scene.surfaces.size(), mesh.patches.size(), mesh.elementCount(),
+              mesh.mesh.n_vertices());
+  std::printf("area        %.9g (all sides), emitting %.9g\n", total, emitting);
 }
 
 /// The surface table, then the totals.
@@ -50,23 +63,39 @@ void printSurfaces(const Scene& scene, const PatchMesh& mesh) {
     total += summary.area * (surface.twoSided ? 2 : 1);
     if (material.emits()) emitting += summary.area;
   }
-  std::printf("\ntotals      %zu surfaces, %zu patches, %d elements, %zu vertices\n",
-              scene.surfaces.size(), mesh.patches.size(), mesh.elementCount(),
-              mesh.mesh.n_vertices());
-  std::printf("area        %.9g (all sides), emitting %.9g\n", total, emitting);
+  printTotals(scene, mesh, total, emitting);
+}
+
+/// The area cut away in all.
+double cutAwayArea(const PatchMesh& mesh) {
+  double cut = 0;
+  for (const auto& c : mesh.cutAway) cut += c.area;
+  return cut;
+}
+
+/// The names of the surfaces that enclose a cut-away part, comma-separated.
+std::string enclosingNames(const Scene& scene, const std::vector<int>& enclosedBy) {
+  std::string by;
+  for (int s : enclosedBy) by += (by.empty() ? "" : ", ") + scene.surfaces[s].name;
+  return by;
 }
 
 /// Contacts: where surfaces touch, the mesh is cut; what they enclose is left out.
 void printContacts(const Scene& scene, const PatchMesh& mesh) {
-  double cut = 0;
-  for (const auto& c : mesh.cutAway) cut += c.area;
-  std::printf("contacts    %d lines where surfaces touch; %.9g cut away\n", mesh.contactLines, cut);
+  std::printf("contacts    %d lines where surfaces touch; %.9g cut away\n", mesh.contactLines,
+              cutAwayArea(mesh));
   for (const auto& c : mesh.cutAway) {
-    std::string by;
-    for (int s : c.enclosedBy) by += (by.empty() ? "" : ", ") + scene.surfaces[s].name;
+    const std::string by = enclosingNames(scene, c.enclosedBy);
     std::printf("  %-20s %14.9g cut away: enclosed by %s\n", scene.surfaces[c.surface].name.c_str(),
                 c.area, by.c_str());
   }
+}
+
+/// How the direct light is shown: at the vertices by rays (points, rays) or from the hemicubes.
+std::string directLine(const DirectLight* direct) {
+  return direct ? "at vertices by rays, " + std::to_string(direct->samples()) + " points on the emitters, " +
+                      std::to_string(direct->rays()) + " rays"
+                : "from the hemicubes";
 }
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
@@ -79,10 +108,7 @@ void printMeshing(const MeshedScene& meshed, double seconds) {
     std::printf("adaptive    %d -> %d elements in %d rounds (min element edge %.6g, contrast %.3g), "
                 "%.3f s\n", adaptive.elementsBefore, adaptive.elementsAfter, adaptive.rounds,
                 settings.minElementEdge, settings.contrast, adaptive.seconds);
-  std::printf("direct      %s\n", direct ? ("at vertices by rays, " + std::to_string(direct->samples()) +
-                                          " points on the emitters, " + std::to_string(direct->rays()) +
-                                          " rays").c_str()
-                                       : "from the hemicubes");
+  std::printf("direct      %s\n", directLine(direct.get()).c_str());
   std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds, mesh.stats.rounds);
 }
 

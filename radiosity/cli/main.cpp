@@ -18,6 +18,11 @@ void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, c
 
 namespace {
 
+/// The check of a hemicube resolution's flag: an even number of pixels.
+std::string mustBeEven(const std::string& resolution) {
+  return std::stoi(resolution) % 2 ? "must be even" : "";
+}
+
 /// Element and patch sizes, contacts and the element cap.
 void addSizeFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--max-element-edge", flags.maxElementEdge,
@@ -61,12 +66,12 @@ void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
                  "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
                  "default 128)")
       ->check(CLI::Range(2, 8192))
-      ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
+      ->check(mustBeEven);
   app.add_option("--emitter-hemicube", flags.emitterHemicubeResolution,
                  "Hemicube resolution for emitting patches, even "
                  "(solver.emitter_hemicube_resolution; default 256)")
       ->check(CLI::Range(2, 8192))
-      ->check([](const std::string& r) { return std::stoi(r) % 2 ? "must be even" : ""; });
+      ->check(mustBeEven);
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
 }
 
@@ -144,6 +149,18 @@ void printWarnings(const std::vector<std::string>& warnings) {
 
 namespace {
 
+/// An error on stderr, as every command says it.
+void printError(const std::string& message) {
+  std::cerr << "radiosity: error: " << message << "\n";
+}
+
+/// Every command of the tool, each added to `app`.
+std::vector<rad::cli::Command> addCommands(CLI::App& app) {
+  return {rad::cli::addSolveCommand(app),       rad::cli::addInfoCommand(app),
+          rad::cli::addMeshCommand(app),        rad::cli::addFormFactorsCommand(app),
+          rad::cli::addConvergenceCommand(app), rad::cli::addReferenceCommand(app)};
+}
+
 /// Runs the parsed command; errors are said on stderr with exit status 1.
 int runReportingErrors(const std::vector<rad::cli::Command>& commands) {
   try {
@@ -151,13 +168,12 @@ int runReportingErrors(const std::vector<rad::cli::Command>& commands) {
       if (command.app->parsed()) command.run();
     return 0;
   } catch (const rad::SettingError& e) {
-    std::cerr << "radiosity: error: " << rad::cli::withFlags(e.what()) << "\n";
+    printError(rad::cli::withFlags(e.what()));
   } catch (const std::bad_alloc&) {
-    std::cerr << "radiosity: error: out of memory: the scene's mesh and factors need more than this "
-                 "machine has (raise --max-element-edge or lower --max-elements and "
-                 "--factor-cache-mb)\n";
+    printError("out of memory: the scene's mesh and factors need more than this machine has (raise "
+               "--max-element-edge or lower --max-elements and --factor-cache-mb)");
   } catch (const std::exception& e) {  // InputError and the rest
-    std::cerr << "radiosity: error: " << e.what() << "\n";
+    printError(e.what());
   }
   return 1;
 }
@@ -167,10 +183,7 @@ int runReportingErrors(const std::vector<rad::cli::Command>& commands) {
 int main(int argc, char** argv) {
   CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
   app.require_subcommand(1);
-  const std::vector<rad::cli::Command> commands = {
-      rad::cli::addSolveCommand(app),       rad::cli::addInfoCommand(app),
-      rad::cli::addMeshCommand(app),        rad::cli::addFormFactorsCommand(app),
-      rad::cli::addConvergenceCommand(app), rad::cli::addReferenceCommand(app)};
+  const std::vector<rad::cli::Command> commands = addCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -16,16 +16,20 @@ struct MeshOptions {
   SolverBlock flags;
 };
 
-void runMesh(const MeshOptions& o) {
-  checkOutputPath(o.output);
-  const MeshedScene meshed = meshWithFlags(loadScene(o.scene), o.flags, false);
-  const PatchMesh& mesh = meshed.mesh;
-  const Scene& scene = meshed.scene;
+/// The mesh as PLY, each face with its surface, patch and side.
+PlyMesh meshPly(const PatchMesh& mesh, const Scene& scene) {
   PlyMesh ply = toPly(mesh);
   ply.comments.push_back("radiosity mesh of " + scene.path);
   ply.face.push_back(faceIntColumn(mesh, "patch", &PatchMesh::patch));
   ply.face.push_back(faceIntColumn(mesh, "side", &PatchMesh::side));
-  writePly(o.output, ply);
+  return ply;
+}
+
+void runMesh(const MeshOptions& o) {
+  checkOutputPath(o.output);
+  const MeshedScene meshed = meshWithFlags(loadScene(o.scene), o.flags, false);
+  const PatchMesh& mesh = meshed.mesh;
+  writePly(o.output, meshPly(mesh, meshed.scene));
   std::cerr << "radiosity: wrote " << o.output << " (" << mesh.elementCount() << " elements, "
             << mesh.patches.size() << " patches)\n";
 }

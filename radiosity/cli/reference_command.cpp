@@ -31,6 +31,25 @@ struct ReferenceOptions {
   unsigned seed = 1;
 };
 
+/// One line's point: six finite numbers (position, non-zero normal) and an optional tag.
+pathtrace::SurfacePoint parsePoint(std::istringstream& words, const std::string& line, const std::string& where) {
+  double v[6];
+  for (double& x : v)
+    if (!(words >> x) || !std::isfinite(x)) throw inputError(where, "x y z nx ny nz [tag], six finite numbers", "'" + line + "'");
+  pathtrace::SurfacePoint p{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, -1, "point"};
+  words >> p.tag;
+  if (!(glm::length(p.normal) > 0)) throw inputError(where, "a non-zero normal", "(0, 0, 0)");
+  return p;
+}
+
+/// Finds the point's surface, or refuses a point on none.
+void locateOrRefuse(const pathtrace::TraceScene& scene, pathtrace::SurfacePoint& p, const std::string& where) {
+  if (!pathtrace::locatePoint(scene, p, kPointTolerance * scene.size()))
+    throw inputError(where, "a point on a surface, within " + std::to_string(kPointTolerance) +
+                                " of the scene's size along its normal, on the side the normal faces",
+                     "none there");
+}
+
 /// Reads `x y z nx ny nz [tag]` lines ('#' starts a comment) and finds each point's surface.
 std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const pathtrace::TraceScene& scene) {
   std::istringstream in(readInputFile(path, "a readable points file"));
@@ -43,16 +62,8 @@ std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const p
     if (!(words >> first)) continue;
     const std::string where = path + ": line " + std::to_string(lineNo);
     words.seekg(0);
-    double v[6];
-    for (double& x : v)
-      if (!(words >> x) || !std::isfinite(x)) throw inputError(where, "x y z nx ny nz [tag], six finite numbers", "'" + line + "'");
-    pathtrace::SurfacePoint p{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, -1, "point"};
-    words >> p.tag;
-    if (!(glm::length(p.normal) > 0)) throw inputError(where, "a non-zero normal", "(0, 0, 0)");
-    if (!pathtrace::locatePoint(scene, p, kPointTolerance * scene.size()))
-      throw inputError(where, "a point on a surface, within " + std::to_string(kPointTolerance) +
-                                  " of the scene's size along its normal, on the side the normal faces",
-                       "none there");
+    pathtrace::SurfacePoint p = parsePoint(words, line, where);
+    locateOrRefuse(scene, p, where);
     out.push_back(p);
   }
   if (out.empty()) throw inputError(path, "at least one point", "none");
@@ -90,6 +101,11 @@ struct PathCounts {
   long capped = 0, fewest = 0, most = 0;
 };
 
+/// A point of the reference file: where, its surface's name, its tag and the estimate.
+ReferencePoint referencePoint(const Scene& scene, const pathtrace::SurfacePoint& p, const pathtrace::PointEstimate& e) {
+  return {p.position, p.normal, scene.surfaces[size_t(p.surface)].name, p.tag, e.B, e.standardError, e.paths};
+}
+
 /// The reference file's points, and the path counts.
 ReferenceFile referencePoints(const Scene& scene, const std::vector<pathtrace::SurfacePoint>& points,
                               const std::vector<pathtrace::PointEstimate>& estimates, bool capping,
@@ -98,13 +114,22 @@ ReferenceFile referencePoints(const Scene& scene, const std::vector<pathtrace::S
   counts = {0, estimates[0].paths, 0};
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& e = estimates[i];
-    file.points.push_back({points[i].position, points[i].normal, scene.surfaces[size_t(points[i].surface)].name,
-                           points[i].tag, e.B, e.standardError, e.paths});
+    file.points.push_back(referencePoint(scene, points[i], e));
     counts.capped += capping && e.paths >= maxPaths;
     counts.fewest = std::min(counts.fewest, e.paths);
     counts.most = std::max(counts.most, e.paths);
   }
   return file;
+}
+
+/// The header's paths-per-point line: the fixed count, or the relative error, bounds and capped points.
+std::string pathsPerPointLine(const ReferenceOptions& o, const pathtrace::TraceOptions& options,
+                              const PathCounts& counts) {
+  char buf[256];
+  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
+  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
+                     o.relativeError, options.minPaths, options.maxPaths, counts.capped);
+  return buf;
 }
 
 /// The header lines: method, scene, seed, points, paths and time.
@@ -119,15 +144,18 @@ std::vector<std::string> referenceHeader(const ReferenceOptions& o, const pathtr
   header.push_back("seed: " + std::to_string(o.seed));
   header.push_back("points: " + std::to_string(points) +
                    (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points));
-  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
-  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
-                     o.relativeError, options.minPaths, options.maxPaths, counts.capped);
-  header.push_back(buf);
+  header.push_back(pathsPerPointLine(o, options, counts));
   std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", traced, counts.fewest, counts.most);
   header.push_back(buf);
   std::snprintf(buf, sizeof buf, "seconds: %.3f (%.3g paths per second)", seconds, double(traced) / seconds);
   header.push_back(buf);
   return header;
+}
+
+/// The closing line: points, paths, time and rate, and the file written.
+void printWritten(size_t points, long paths, double seconds, const std::string& output) {
+  std::fprintf(stderr, "radiosity: %zu points, %ld paths in %.2f s (%.3g per second); wrote %s\n", points, paths,
+               seconds, double(paths) / seconds, output.c_str());
 }
 
 void runReference(const ReferenceOptions& o) {
@@ -148,8 +176,7 @@ void runReference(const ReferenceOptions& o) {
   ReferenceFile file = referencePoints(scene, points, estimates, o.paths <= 0, options.maxPaths, counts);
   file.header = referenceHeader(o, options, scene, points.size(), counts, tracer.pathsTraced(), seconds);
   writeReferenceFile(o.output, file);
-  std::fprintf(stderr, "radiosity: %zu points, %ld paths in %.2f s (%.3g per second); wrote %s\n", points.size(),
-               tracer.pathsTraced(), seconds, double(tracer.pathsTraced()) / seconds, o.output.c_str());
+  printWritten(points.size(), tracer.pathsTraced(), seconds, o.output);
 }
 
 }  // namespace

@@ -39,11 +39,15 @@ struct Measures {
   std::vector<glm::dvec3> fixedPoint;
 };
 
+/// Whether a file name ends in .ply (a result, not a reference).
+bool isPly(const std::string& path) {
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".ply") == 0;
+}
+
 /// The reference's points, read before any work: a bad file fails at once.
 std::vector<ReferencePoint> readReference(const std::string& reference) {
   if (reference.empty()) return {};
-  const bool ply = reference.size() >= 4 && reference.compare(reference.size() - 4, 4, ".ply") == 0;
-  if (reference == "direct" || ply)
+  if (reference == "direct" || isPly(reference))
     throw inputError("--reference " + reference,
                      "a reference CSV written by 'radiosity reference' (for the distance to the "
                      "direct solution of the same mesh and factors, use --fixed-point)", reference);
@@ -58,6 +62,13 @@ std::vector<glm::dvec3> fixedPoint(const std::string& which, const MeshedScene& 
   return TransportMatrix(scene.mesh, *factors, solverOptions(scene.settings)).solveDirect();
 }
 
+/// A history row's true error: the RMS, and per channel the RMS and mean.
+void addTrueError(Json& row, const ErrorSummary& e) {
+  row["error"] = e.rms;
+  row["error_rms_rgb"] = rgb(e.rmsRgb);
+  row["error_mean_rgb"] = rgb(e.meanRgb);
+}
+
 Json historyRow(const RadiositySolve& solve, const MeshedScene& scene, const Measures& m) {
   const ProgressiveSolver& solver = solve.solver();
   Json row;
@@ -65,14 +76,14 @@ Json historyRow(const RadiositySolve& solve, const MeshedScene& scene, const Mea
   row["shots"] = solver.shots();
   row["unshot_fraction"] = solver.unshotFraction();
   row["residual"] = solver.ledger().residual();
-  if (m.truth) {
-    const ErrorSummary e = trueErrorNow(solve, scene, *m.truth);
-    row["error"] = e.rms;
-    row["error_rms_rgb"] = rgb(e.rmsRgb);
-    row["error_mean_rgb"] = rgb(e.meanRgb);
-  }
+  if (m.truth) addTrueError(row, trueErrorNow(solve, scene, *m.truth));
   if (!m.fixedPoint.empty()) row["fixed_point_distance"] = relativeError(scene.mesh, solver.radiosity(), m.fixedPoint);
   return row;
+}
+
+/// The progress line on a terminal, overwritten in place.
+void printProgress(const ProgressiveSolver& solver, double t) {
+  std::fprintf(stderr, "\rradiosity: %ld shots, unshot %.2e, %.1f s   ", solver.shots(), solver.unshotFraction(), t);
 }
 
 /// Shoots to a stop condition, keeping the history and showing progress on a terminal; the
@@ -89,11 +100,7 @@ Json shoot(RadiositySolve& solve, const MeshedScene& scene, const Measures& meas
       nextRowShots = std::ceil(solver.shots() * kHistoryShotGrowth);
       lastRowSeconds = t;
     }
-    if (terminal && t - lastProgress >= kProgressSeconds) {
-      std::fprintf(stderr, "\rradiosity: %ld shots, unshot %.2e, %.1f s   ", solver.shots(),
-                   solver.unshotFraction(), t);
-      lastProgress = t;
-    }
+    if (terminal && t - lastProgress >= kProgressSeconds) printProgress(solver, t), lastProgress = t;
   }
   if (terminal) std::fprintf(stderr, "\n");
   if (history.back()["shots"] != solver.shots()) history.push_back(historyRow(solve, scene, measures));
@@ -158,6 +165,32 @@ void runSolve(const SolveOptions& o) {
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
 }
 
+/// When shooting stops, and how hard it shoots.
+void addStopFlags(CLI::App& sub, SolverBlock& flags) {
+  sub.add_option("--tolerance", flags.tolerance,
+                 "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3)")
+      ->check(CLI::Range(1e-300, 1.0));
+  sub.add_option("--max-shots", flags.maxShots, "Stop after this many shots (solver.max_shots)")
+      ->check(CLI::PositiveNumber);
+  sub.add_option("--time-limit", flags.timeLimit, "Stop after this many seconds (solver.time_limit)")
+      ->check(CLI::PositiveNumber);
+  sub.add_option("--overshoot", flags.overshoot,
+                 "Overshooting factor ω in [1, 2] (solver.overshoot; default 1.3, measured; 1: plain shooting)")
+      ->check(CLI::Range(1.0, 2.0));
+}
+
+/// What the history measures: the true error against a reference, the distance to a fixed point.
+void addMeasureFlags(CLI::App& sub, SolveOptions& o) {
+  sub.add_option("--reference", o.reference,
+                 "Measure the true error against a reference CSV from 'radiosity reference': the "
+                 "report's history and its 'error' block then hold the relative error of what a "
+                 "viewer shows at the reference's points");
+  sub.add_option("--fixed-point", o.fixedPoint,
+                 "Measure convergence (not error) to 'direct' (the full system solved from the same "
+                 "hemicubes first) or an earlier result PLY of the same scene and mesh settings: "
+                 "the history's fixed_point_distance, relative L2 over elements");
+}
+
 }  // namespace
 
 Command addSolveCommand(CLI::App& app) {
@@ -169,24 +202,8 @@ Command addSolveCommand(CLI::App& app) {
   sub->add_option("--report", o->report, "Report file (JSON): settings, counts, energy ledger, history");
   addMeshFlags(*sub, o->flags);
   addSolverFlags(*sub, o->flags);
-  sub->add_option("--tolerance", o->flags.tolerance,
-                  "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3)")
-      ->check(CLI::Range(1e-300, 1.0));
-  sub->add_option("--max-shots", o->flags.maxShots, "Stop after this many shots (solver.max_shots)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--time-limit", o->flags.timeLimit, "Stop after this many seconds (solver.time_limit)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--overshoot", o->flags.overshoot,
-                  "Overshooting factor ω in [1, 2] (solver.overshoot; default 1.3, measured; 1: plain shooting)")
-      ->check(CLI::Range(1.0, 2.0));
-  sub->add_option("--reference", o->reference,
-                  "Measure the true error against a reference CSV from 'radiosity reference': the "
-                  "report's history and its 'error' block then hold the relative error of what a "
-                  "viewer shows at the reference's points");
-  sub->add_option("--fixed-point", o->fixedPoint,
-                  "Measure convergence (not error) to 'direct' (the full system solved from the same "
-                  "hemicubes first) or an earlier result PLY of the same scene and mesh settings: "
-                  "the history's fixed_point_distance, relative L2 over elements");
+  addStopFlags(*sub, o->flags);
+  addMeasureFlags(*sub, *o);
   sub->add_option("--exposure", o->flags.exposure,
                   "Display exposure K (solver.exposure; default: automatic, see README)")
       ->check(CLI::PositiveNumber);

@@ -3,12 +3,9 @@
 namespace rad::cli {
 namespace {
 
-Json settingsBlock(const Settings& settings) {
+/// The settings of shooting: hemicubes, stop conditions, shooting points and the factor cache.
+void addShootingSettings(Json& s, const Settings& settings) {
   const SolverOptions options = solverOptions(settings);
-  Json s;
-  s["max_element_edge"] = settings.maxElementEdge;
-  s["max_patch_edge"] = settings.maxPatchEdge;
-  s["cut_contacts"] = settings.cutContacts;
   s["hemicube_resolution"] = settings.hemicubeResolution;
   s["emitter_hemicube_resolution"] = settings.emitterHemicubeResolution;
   s["tolerance"] = settings.tolerance;
@@ -20,11 +17,24 @@ Json settingsBlock(const Settings& settings) {
   s["shooter_samples"] = options.shooterSamples;
   s["proximity_samples"] = options.proximitySamples;
   s["factor_cache_mb"] = settings.factorCacheMb;
+}
+
+/// The settings of adaptive refinement, the direct light at the vertices and the element cap.
+void addRefinementSettings(Json& s, const Settings& settings) {
   s["adaptive"] = settings.adaptive;
   s["min_element_edge"] = settings.minElementEdge;
   s["contrast"] = settings.contrast;
   s["vertex_direct"] = settings.vertexDirect;
   s["max_elements"] = settings.maxElements;
+}
+
+Json settingsBlock(const Settings& settings) {
+  Json s;
+  s["max_element_edge"] = settings.maxElementEdge;
+  s["max_patch_edge"] = settings.maxPatchEdge;
+  s["cut_contacts"] = settings.cutContacts;
+  addShootingSettings(s, settings);
+  addRefinementSettings(s, settings);
   return s;
 }
 
@@ -45,26 +55,39 @@ Json directLightBlock(const DirectLight* direct) {
           {"rays", direct ? direct->rays() : 0}};
 }
 
+/// The names of some surfaces, as a JSON array.
+Json surfaceNames(const Scene& scene, const std::vector<int>& surfaces) {
+  Json names = Json::array();
+  for (int s : surfaces) names.push_back(scene.surfaces[s].name);
+  return names;
+}
+
 /// What contacts cut away: the parts of surfaces other surfaces enclose (a floor under a
 /// block), which could neither receive nor send light; and their total area.
 Json cutAwayList(const MeshedScene& scene, double& area) {
   Json cutAway = Json::array();
   area = 0;
   for (const auto& c : scene.mesh.cutAway) {
-    Json by = Json::array();
-    for (int s : c.enclosedBy) by.push_back(scene.scene.surfaces[s].name);
-    cutAway.push_back({{"surface", scene.scene.surfaces[c.surface].name}, {"area", c.area}, {"enclosed_by", by}});
+    cutAway.push_back({{"surface", scene.scene.surfaces[c.surface].name},
+                       {"area", c.area},
+                       {"enclosed_by", surfaceNames(scene.scene, c.enclosedBy)}});
     area += c.area;
   }
   return cutAway;
+}
+
+/// The elements that reflect nothing.
+int blackElements(const PatchMesh& mesh) {
+  int black = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) black += mesh.reflectance(e) == glm::dvec3(0.0);
+  return black;
 }
 
 /// What the scene did not need: black elements receive nothing (they only occlude), and
 /// patches whose unshot power never became the largest never shot.
 Json leftOutBlock(const MeshedScene& scene, const ProgressiveSolver& solver) {
   const PatchMesh& mesh = scene.mesh;
-  int black = 0;
-  for (int e = 0; e < mesh.elementCount(); ++e) black += mesh.reflectance(e) == glm::dvec3(0.0);
+  const int black = blackElements(mesh);
   double cutArea = 0;
   Json cutAway = cutAwayList(scene, cutArea);
   return {{"black_elements_receive_nothing", black},
@@ -96,6 +119,39 @@ Json energyBlock(const EnergyLedger& l) {
           {"unshot", rgb(l.unshot)}, {"residual", l.residual()}};
 }
 
+/// The point of the largest relative error: where, the reference, what is shown and the error.
+Json worstBlock(const ErrorSummary& e, const TrueError& truth) {
+  const ReferencePoint& p = truth.points()[size_t(e.worstPoint)];
+  return {{"surface", p.surface}, {"tag", p.tag}, {"position", rgb(p.position)},
+          {"reference", rgb(p.B)}, {"shown", rgb(e.worstShown)}, {"relative_error", e.worst}};
+}
+
+/// The error per surface (null RMS and mean where no channel was used).
+Json perSurfaceTable(const ErrorSummary& e) {
+  Json table = Json::array();
+  for (const auto& s : e.perSurface)
+    table.push_back({{"surface", s.name}, {"points", s.points}, {"channels_used", s.channels},
+                     {"rms", s.channels ? Json(s.rms) : Json()}, {"mean", s.channels ? Json(s.mean) : Json()}});
+  return table;
+}
+
+/// What the solver did: shots, hemicubes, cache, time and why it stopped.
+void addRunFields(Json& report, const ProgressiveSolver& solver) {
+  report["shots"] = solver.shots();
+  report["hemicubes"] = solver.hemicubes();
+  report["factor_cache_bytes"] = solver.cachedBytes();
+  report["seconds"] = solver.seconds();
+  report["stop_reason"] = stopName(solver.stopReason());
+}
+
+/// How the solution is shown: exposure, the ambient term and the clamped elements.
+void addDisplayFields(Json& report, const MeshedScene& scene, const Solution& solution) {
+  report["exposure"] = exposureOf(scene, solution);
+  report["ambient_applied"] = !solution.converged;
+  report["ambient"] = rgb(solution.ambient);
+  report["negative_clamped"] = solution.clamped;
+}
+
 }  // namespace
 
 Json rgb(const glm::dvec3& c) { return Json::array({c.x, c.y, c.z}); }
@@ -122,16 +178,8 @@ Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string
   j["rms_rgb"] = rgb(e.rmsRgb);
   j["mean_rgb"] = rgb(e.meanRgb);
   j["reference_noise_rms"] = e.referenceNoise;
-  if (e.worstPoint >= 0) {
-    const ReferencePoint& p = truth.points()[size_t(e.worstPoint)];
-    j["worst"] = {{"surface", p.surface}, {"tag", p.tag}, {"position", rgb(p.position)},
-                  {"reference", rgb(p.B)}, {"shown", rgb(e.worstShown)}, {"relative_error", e.worst}};
-  }
-  Json table = Json::array();
-  for (const auto& s : e.perSurface)
-    table.push_back({{"surface", s.name}, {"points", s.points}, {"channels_used", s.channels},
-                     {"rms", s.channels ? Json(s.rms) : Json()}, {"mean", s.channels ? Json(s.mean) : Json()}});
-  j["per_surface"] = table;
+  if (e.worstPoint >= 0) j["worst"] = worstBlock(e, truth);
+  j["per_surface"] = perSurfaceTable(e);
   return j;
 }
 
@@ -143,15 +191,8 @@ Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const So
   report["adaptive"] = adaptiveBlock(scene.adaptive);
   report["direct_light"] = directLightBlock(scene.direct.get());
   report["counts"] = countsBlock(scene, solver);
-  report["shots"] = solver.shots();
-  report["hemicubes"] = solver.hemicubes();
-  report["factor_cache_bytes"] = solver.cachedBytes();
-  report["seconds"] = solver.seconds();
-  report["stop_reason"] = stopName(solver.stopReason());
-  report["exposure"] = exposureOf(scene, solution);
-  report["ambient_applied"] = !solution.converged;
-  report["ambient"] = rgb(solution.ambient);
-  report["negative_clamped"] = solution.clamped;
+  addRunFields(report, solver);
+  addDisplayFields(report, scene, solution);
   report["camera"] = cameraBlock(cameraOf(scene.scene));
   report["energy"] = energyBlock(solver.ledger());
   return report;
