@@ -134,6 +134,14 @@ Image blankGrid(const RenderOptions& options) {
   return grid;
 }
 
+/// Tiles 5 and 6: the radiosity result, flat and Gouraud.
+void pasteRadiosityTiles(Image& grid, const ResultFile& mesh, RenderOptions o) {
+  o.shade = Shading::Flat;
+  pasteTile(grid, render(mesh, o), 5);
+  o.shade = Shading::Smooth;
+  pasteTile(grid, render(mesh, o), 6);
+}
+
 }  // namespace
 
 Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptions& options) {
@@ -145,10 +153,7 @@ Image renderLadder(const ResultFile& mesh, const Scene& scene, const RenderOptio
   pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/true), 0);
   pasteTile(grid, softwareTile(mesh, scene, o, /*wireframe=*/false), 1);
   pasteLocalTiles(grid, scene, o);
-  o.shade = Shading::Flat;
-  pasteTile(grid, render(mesh, o), 5);
-  o.shade = Shading::Smooth;
-  pasteTile(grid, render(mesh, o), 6);
+  pasteRadiosityTiles(grid, mesh, o);
   return grid;
 }
 

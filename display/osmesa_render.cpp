@@ -292,6 +292,33 @@ std::vector<uint8_t> rgbOf(const std::vector<GLubyte>& rgba) {
   return rgb;
 }
 
+/// The local model's lighting: the scene's lights, normalised normals, material colours (not
+/// vertex colours), and its fog.
+void enableLocalLighting(const Scene& scene) {
+  setupLights(scene);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);
+  glDisable(GL_COLOR_MATERIAL);
+  setupFog(scene.fog);
+}
+
+/// The radiance picture of the list (RGB floats, bottom row first) through a float colour
+/// buffer. glColor values are clamped to [0, 1] on the way in, so the colours are scaled into
+/// that range and the read-back scaled back.
+std::vector<float> radiancePass(const DrawList& list, const glm::mat4& projection, const glm::mat4& view,
+                                int width, int height, Shading shade, bool cullBack) {
+  const size_t pixels = size_t(width) * height;
+  const float peak = peakChannel(list.radiance);
+  const float scale = peak > 0 ? 1.0f / peak : 1.0f;
+  std::vector<GLfloat> buffer(pixels * 4);
+  drawPass(list, scaledColours(list.radiance, scale), projection, view, width, height, shade,
+           /*wireframe=*/false, GL_FLOAT, buffer.data(), cullBack);
+  std::vector<float> radiance(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) radiance[p * 3 + c] = buffer[p * 4 + c] / scale;
+  return radiance;
+}
+
 }  // namespace
 
 void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
@@ -300,13 +327,7 @@ void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm:
   std::vector<GLubyte> buffer(size_t(width) * height * 4);
   Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
   beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
-
-  setupLights(scene);
-  glEnable(GL_LIGHTING);
-  glEnable(GL_NORMALIZE);
-  glDisable(GL_COLOR_MATERIAL);
-  setupFog(scene.fog);
-
+  enableLocalLighting(scene);
   bindLitVertices(list.positions, list.normals);
   drawBatches(list.batches, list.positions.size(), wireframe, setLocalMaterial);
   rgb = rgbOf(buffer);
@@ -338,17 +359,7 @@ void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::
              buffer.data(), cullBack);
     rgb = rgbOf(buffer);
   }
-  if (!radiance) return;
-  // Radiance through a float colour buffer. glColor values are clamped to [0, 1] on the way in,
-  // so the colours are scaled into that range and the read-back scaled back.
-  const float peak = peakChannel(list.radiance);
-  const float scale = peak > 0 ? 1.0f / peak : 1.0f;
-  std::vector<GLfloat> buffer(pixels * 4);
-  drawPass(list, scaledColours(list.radiance, scale), projection, view, width, height, shade,
-           /*wireframe=*/false, GL_FLOAT, buffer.data(), cullBack);
-  radiance->resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) (*radiance)[p * 3 + c] = buffer[p * 4 + c] / scale;
+  if (radiance) *radiance = radiancePass(list, projection, view, width, height, shade, cullBack);
 }
 
 }  // namespace rad::viewer::detail
