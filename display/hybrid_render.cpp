@@ -34,6 +34,15 @@ void checkHybridInputs(const ResultFile& mesh, const Scene& scene, const RenderO
   if (scene.lights.empty()) throw inputError(scene.path, "a scene with lights for --mode hybrid", "none");
 }
 
+/// Throws unless face f's surface is one of the scene's.
+void checkSurfaceIndex(const ResultFile& mesh, const Scene& scene, size_t f) {
+  if (mesh.faceSurface[f] < 0 || size_t(mesh.faceSurface[f]) >= scene.surfaces.size())
+    throw inputError(mesh.path + ": face " + std::to_string(f) + ": surface",
+                     "a surface index of " + scene.path + " (0.." +
+                         std::to_string(int(scene.surfaces.size()) - 1) + ")",
+                     std::to_string(mesh.faceSurface[f]));
+}
+
 }  // namespace
 
 namespace internal {
@@ -41,12 +50,7 @@ namespace internal {
 void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where) {
   if (mesh.faceSurface.size() != mesh.faces.size())
     throw inputError(mesh.path, "a result with the face property `surface` (for " + where + ")", "none");
-  for (size_t f = 0; f < mesh.faceSurface.size(); ++f)
-    if (mesh.faceSurface[f] < 0 || size_t(mesh.faceSurface[f]) >= scene.surfaces.size())
-      throw inputError(mesh.path + ": face " + std::to_string(f) + ": surface",
-                       "a surface index of " + scene.path + " (0.." +
-                           std::to_string(int(scene.surfaces.size()) - 1) + ")",
-                       std::to_string(mesh.faceSurface[f]));
+  for (size_t f = 0; f < mesh.faceSurface.size(); ++f) checkSurfaceIndex(mesh, scene, f);
 }
 
 }  // namespace internal

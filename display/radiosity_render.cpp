@@ -114,6 +114,19 @@ std::vector<uint32_t> topRowFirst(const raster::Target& target) {
   return out;
 }
 
+/// Draws the list at w x h on the backend `o` names: the display bytes into rgb and, when
+/// o.radiance, the radiance into `radiance` (both bottom row first).
+void drawOnBackend(const detail::DrawList& list, const glm::mat4& mvp, const glm::mat4& projection,
+                   const glm::mat4& view, int w, int h, const RenderOptions& o, std::vector<uint8_t>& rgb,
+                   std::vector<float>& radiance) {
+  if (o.backend == Backend::Software)
+    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr,
+                   o.cullBack);
+  else
+    detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
+                         o.radiance ? &radiance : nullptr, o.cullBack);
+}
+
 }  // namespace
 
 namespace detail {
@@ -175,12 +188,7 @@ Image render(const ResultFile& mesh, const RenderOptions& o) {
       detail::buildDrawList(mesh, o.shade, effectiveExposure(mesh, o), internal::showsStoredColours(mesh, o));
   std::vector<uint8_t> rgb;
   std::vector<float> radiance;
-  if (o.backend == Backend::Software)
-    renderSoftware(list, mvp, w, h, o.shade, o.wireframe, rgb, o.radiance ? &radiance : nullptr,
-                   o.cullBack);
-  else
-    detail::renderOsMesa(list, projection, view, w, h, o.shade, o.wireframe, rgb,
-                         o.radiance ? &radiance : nullptr, o.cullBack);
+  drawOnBackend(list, mvp, projection, view, w, h, o, rgb, radiance);
   Image image = internal::imageOf(rgb, o);
   if (o.radiance) image.radiance = internal::downsampleFloats(radiance, o.width, o.height, o.ssaa);
   return image;
