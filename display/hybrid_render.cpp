@@ -56,6 +56,22 @@ void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::st
 }  // namespace internal
 
 namespace detail {
+namespace {
+
+/// Appends face f's three corners from the radiosity draw list `base`: position, colour and
+/// normal (the vertex normal when vertexNormals, else the face's).
+void appendFace(HybridDrawList& list, const DrawList& base, const ResultFile& mesh, size_t f,
+                bool vertexNormals) {
+  const glm::vec3 normal = faceNormal(mesh, f);
+  for (size_t corner = 0; corner < 3; ++corner) {
+    const size_t k = 3 * f + corner;
+    list.positions.push_back(base.positions[k]);
+    list.colours.push_back(base.display[k]);
+    list.normals.push_back(vertexNormals ? mesh.vertexNormal[size_t(mesh.faces[f][corner])] : normal);
+  }
+}
+
+}  // namespace
 
 HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, Shading shade,
                                    double exposure, bool storedColours) {
@@ -67,15 +83,8 @@ HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, S
   list.normals.reserve(base.positions.size());
   list.colours.reserve(base.positions.size());
   const bool vertexNormals = shade == Shading::Smooth && !mesh.vertexNormal.empty();
-  internal::appendBatches(list, scene, bySurface, specularBatch, [&](size_t f) {
-    const glm::vec3 normal = faceNormal(mesh, f);
-    for (size_t corner = 0; corner < 3; ++corner) {
-      const size_t k = 3 * f + corner;
-      list.positions.push_back(base.positions[k]);
-      list.colours.push_back(base.display[k]);
-      list.normals.push_back(vertexNormals ? mesh.vertexNormal[size_t(mesh.faces[f][corner])] : normal);
-    }
-  });
+  internal::appendBatches(list, scene, bySurface, specularBatch,
+                          [&](size_t f) { appendFace(list, base, mesh, f, vertexNormals); });
   return list;
 }
 

@@ -73,6 +73,18 @@ Camera effectiveCamera(const LocalScene& local, const RenderOptions& options) {
 }
 
 namespace detail {
+namespace {
+
+/// Appends element e's three corners: positions and normals (the face normal when flat).
+void appendElement(LocalDrawList& list, const PatchMesh& pm, size_t e, Shading shade) {
+  const glm::vec3 faceNormal(pm.normal(int(e)));
+  for (auto v : pm.mesh.fv_range(TriMesh::FaceHandle(int(e)))) {
+    list.positions.push_back(glm::vec3(PatchMesh::toGlm(pm.mesh.point(v))));
+    list.normals.push_back(shade == Shading::Flat ? faceNormal : glm::vec3(PatchMesh::toGlm(pm.mesh.normal(v))));
+  }
+}
+
+}  // namespace
 
 LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
   const PatchMesh& pm = local.mesh;
@@ -82,14 +94,8 @@ LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
   LocalDrawList list;
   list.positions.reserve(size_t(pm.elementCount()) * 3);
   list.normals.reserve(size_t(pm.elementCount()) * 3);
-  internal::appendBatches(list, local.scene, bySurface, localBatch, [&](size_t e) {
-    const glm::vec3 faceNormal(pm.normal(int(e)));
-    for (auto v : pm.mesh.fv_range(TriMesh::FaceHandle(int(e)))) {
-      list.positions.push_back(glm::vec3(PatchMesh::toGlm(pm.mesh.point(v))));
-      list.normals.push_back(shade == Shading::Flat ? faceNormal
-                                                    : glm::vec3(PatchMesh::toGlm(pm.mesh.normal(v))));
-    }
-  });
+  internal::appendBatches(list, local.scene, bySurface, localBatch,
+                          [&](size_t e) { appendElement(list, pm, e, shade); });
   return list;
 }
 
