@@ -121,6 +121,16 @@ double aloneFactor(const HemicubeGeometry& alone, const Settings& settings, cons
   return fAlone;
 }
 
+/// Whether the surface is occluded (its factor alone differs) and, if not, the exact factor beside.
+void addOcclusion(nlohmann::ordered_json& row, double hemicube, double fAlone, double exact) {
+  bool unoccluded = std::abs(fAlone - hemicube) <= kSamePixels;
+  row["occluded"] = !unoccluded;
+  if (unoccluded) {
+    row["exact"] = exact;
+    row["relative_difference"] = exact > 0 ? (hemicube - exact) / exact : 0.0;
+  }
+}
+
 /// Surface s's row: its hemicube factor (`hemicube`, in the full scene) and, when drawing it
 /// alone gives the same factor (nothing occludes it), the exact factor beside it.
 nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, const Settings& settings,
@@ -139,12 +149,7 @@ nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, con
   row["index"] = s;
   row["name"] = scene.surfaces[s].name;
   row["hemicube"] = hemicube;
-  bool unoccluded = std::abs(fAlone - hemicube) <= kSamePixels;
-  row["occluded"] = !unoccluded;
-  if (unoccluded) {
-    row["exact"] = exact;
-    row["relative_difference"] = exact > 0 ? (hemicube - exact) / exact : 0.0;
-  }
+  addOcclusion(row, hemicube, fAlone, exact);
   return row;
 }
 

@@ -48,6 +48,13 @@ void printTotals(const Scene& scene, const PatchMesh& mesh, double total, double
   std::printf("area        %.9g (all sides), emitting %.9g\n", total, emitting);
 }
 
+/// One row of the surface table.
+void printSurfaceRow(size_t s, const Surface& surface, const Material& material, const SurfaceSummary& summary) {
+  std::printf("  %3zu %-20s %-12s %14.6g %6d %8d %9d%s\n", s, surface.name.c_str(),
+              material.name.c_str(), summary.area, surface.twoSided ? 2 : 1, summary.patches,
+              summary.elements, material.emits() ? "  emitter" : "");
+}
+
 /// The surface table, then the totals.
 void printSurfaces(const Scene& scene, const PatchMesh& mesh) {
   std::printf("\nsurfaces\n  %3s %-20s %-12s %14s %6s %8s %9s\n", "#", "name", "material", "area",
@@ -57,9 +64,7 @@ void printSurfaces(const Scene& scene, const PatchMesh& mesh) {
     const auto& surface = scene.surfaces[s];
     const auto& summary = mesh.surfaces[s];
     const auto& material = scene.materials[surface.material];
-    std::printf("  %3zu %-20s %-12s %14.6g %6d %8d %9d%s\n", s, surface.name.c_str(),
-                material.name.c_str(), summary.area, surface.twoSided ? 2 : 1, summary.patches,
-                summary.elements, material.emits() ? "  emitter" : "");
+    printSurfaceRow(s, surface, material, summary);
     total += summary.area * (surface.twoSided ? 2 : 1);
     if (material.emits()) emitting += summary.area;
   }

@@ -132,6 +132,12 @@ std::string pathsPerPointLine(const ReferenceOptions& o, const pathtrace::TraceO
   return buf;
 }
 
+/// The header's points line: how many, and placed how or read from where.
+std::string pointsLine(const ReferenceOptions& o, size_t points) {
+  return "points: " + std::to_string(points) +
+         (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points);
+}
+
 /// The header lines: method, scene, seed, points, paths and time.
 std::vector<std::string> referenceHeader(const ReferenceOptions& o, const pathtrace::TraceOptions& options,
                                          const Scene& scene, size_t points, const PathCounts& counts,
@@ -142,8 +148,7 @@ std::vector<std::string> referenceHeader(const ReferenceOptions& o, const pathtr
                    "combined by the power heuristic, Russian roulette), independent of the hemicube solver");
   header.push_back("scene: " + scene.path);
   header.push_back("seed: " + std::to_string(o.seed));
-  header.push_back("points: " + std::to_string(points) +
-                   (o.points.empty() ? " placed (3/4 by area, 1/8 near edges, 1/8 near contact lines)" : " from " + o.points));
+  header.push_back(pointsLine(o, points));
   header.push_back(pathsPerPointLine(o, options, counts));
   std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", traced, counts.fewest, counts.most);
   header.push_back(buf);
