@@ -23,16 +23,18 @@ std::string mustBeEven(const std::string& resolution) {
   return std::stoi(resolution) % 2 ? "must be even" : "";
 }
 
+/// An option whose value must be positive (a length).
+template <class T>
+void addPositive(CLI::App& app, const std::string& name, T& slot, const std::string& help) {
+  app.add_option(name, slot, help)->check(CLI::PositiveNumber);
+}
+
 /// Element and patch sizes, contacts and the element cap.
 void addSizeFlags(CLI::App& app, SolverBlock& flags) {
-  app.add_option("--max-element-edge", flags.maxElementEdge,
-                 "Longest element edge, scene units (solver.max_element_edge; default: "
-                 "scene diagonal / 25)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--max-patch-edge", flags.maxPatchEdge,
-                 "Widest patch (shooter), scene units (solver.max_patch_edge; default: 3 "
-                 "element edges)")
-      ->check(CLI::PositiveNumber);
+  addPositive(app, "--max-element-edge", flags.maxElementEdge,
+              "Longest element edge, scene units (solver.max_element_edge; default: scene diagonal / 25)");
+  addPositive(app, "--max-patch-edge", flags.maxPatchEdge,
+              "Widest patch (shooter), scene units (solver.max_patch_edge; default: 3 element edges)");
   app.add_option("--cut-contacts", flags.cutContacts,
                  "Cut surfaces along the lines where others touch them and leave out what those "
                  "enclose, true or false (solver.cut_contacts; default true)");
@@ -47,10 +49,9 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--adaptive", flags.adaptive,
                  "Refine elements where the direct light changes visibly (penumbrae, contacts), "
                  "true or false (solver.adaptive; default true)");
-  app.add_option("--min-element-edge", flags.minElementEdge,
-                 "Adaptive refinement stops at elements this small, scene units "
-                 "(solver.min_element_edge; default: element edge / 4)")
-      ->check(CLI::PositiveNumber);
+  addPositive(app, "--min-element-edge", flags.minElementEdge,
+              "Adaptive refinement stops at elements this small, scene units (solver.min_element_edge; "
+              "default: element edge / 4)");
   app.add_option("--contrast", flags.contrast,
                  "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
                  "across an element (solver.contrast; default 0.02)")
