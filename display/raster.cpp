@@ -67,12 +67,17 @@ bool indicesBelow(const uint32_t* idx, size_t n, size_t limit) {
   return m <= last;
 }
 
+/// Whether an optional buffer is absent (empty) or has one value per pixel.
+template <class Buffer>
+bool absentOrSized(const Buffer& buffer, size_t pixels) {
+  return buffer.empty() || buffer.size() == pixels;
+}
+
 /// Throws std::invalid_argument unless every buffer of the target has one value per pixel.
 void checkBuffers(const Target& target) {
   const size_t pixels = size_t(target.width) * size_t(target.height);
-  if (target.depth.size() != pixels || (!target.item.empty() && target.item.size() != pixels) ||
-      (!target.color.empty() && target.color.size() != pixels) ||
-      (!target.hits.empty() && target.hits.size() != pixels))
+  if (target.depth.size() != pixels || !absentOrSized(target.item, pixels) ||
+      !absentOrSized(target.color, pixels) || !absentOrSized(target.hits, pixels))
     throw std::invalid_argument("raster::drawTriangles: target buffers do not match its size");
 }
 
@@ -151,6 +156,15 @@ void dispatch(bool fast, Shade shade, Ctx& c, const Frame& f, const Vertices& v,
     drawAll<false, Shade::Smooth, Greater>(c, f, v, t);
 }
 
+/// The number of triangles to draw: all of them once their indices are checked against
+/// vertexCount, or the whole triangles of an unindexed list.
+size_t checkedTriangleCount(const uint32_t* indices, size_t triangleCount, size_t vertexCount) {
+  if (!indices) return std::min(triangleCount, vertexCount / 3);
+  if (!indicesBelow(indices, 3 * triangleCount, vertexCount))
+    throw std::out_of_range("raster::drawTriangles: vertex index out of range");
+  return triangleCount;
+}
+
 }  // namespace
 
 void drawTriangles(Target& target, const State& state, const glm::vec4* clip, size_t vertexCount,
@@ -158,12 +172,7 @@ void drawTriangles(Target& target, const State& state, const glm::vec4* clip, si
                    const glm::vec4* colors) {
   if (triangleCount == 0 || vertexCount == 0 || target.width < 1 || target.height < 1) return;
   checkBuffers(target);
-  if (indices) {
-    if (!indicesBelow(indices, 3 * triangleCount, vertexCount))
-      throw std::out_of_range("raster::drawTriangles: vertex index out of range");
-  } else {
-    triangleCount = std::min(triangleCount, vertexCount / 3);
-  }
+  triangleCount = checkedTriangleCount(indices, triangleCount, vertexCount);
   const PixelRange r = drawableRange(target, state);
   if (r.empty()) return;
   const bool wantColor = state.shade != Shade::None && colors && !target.color.empty();

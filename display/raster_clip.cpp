@@ -43,6 +43,18 @@ inline glm::vec4 projectD(const glm::dvec4& v, const Frame& f) {
                    float(v.z * q * f.zScale + f.zBias), float(q));
 }
 
+/// Puts a vertex made on plane p exactly on it.
+inline void putOnPlane(glm::dvec4& pos, int p, const Frame& f) {
+  switch (p) {
+    case 0: pos.z = -(double(f.nearW) * pos.w); break;
+    case 1: pos.z = pos.w; break;
+    case 2: pos.x = -(double(f.gx) * pos.w); break;
+    case 3: pos.x = double(f.gx) * pos.w; break;
+    case 4: pos.y = -(double(f.gy) * pos.w); break;
+    default: pos.y = double(f.gy) * pos.w; break;
+  }
+}
+
 /// Intersection of edge (in, out) with plane p. Always computed from the inside vertex, so an
 /// edge shared by two triangles is cut at bit-identical points whatever its direction.
 inline CVert intersect(const CVert& in, double din, const CVert& out, double dout, int p,
@@ -52,14 +64,7 @@ inline CVert intersect(const CVert& in, double din, const CVert& out, double dou
   r.pos = in.pos + t * (out.pos - in.pos);
   r.col = in.col + float(t) * (out.col - in.col);
   r.src = kGenerated;
-  switch (p) {  // put the vertex exactly on the plane
-    case 0: r.pos.z = -(double(f.nearW) * r.pos.w); break;
-    case 1: r.pos.z = r.pos.w; break;
-    case 2: r.pos.x = -(double(f.gx) * r.pos.w); break;
-    case 3: r.pos.x = double(f.gx) * r.pos.w; break;
-    case 4: r.pos.y = -(double(f.gy) * r.pos.w); break;
-    default: r.pos.y = double(f.gy) * r.pos.w; break;
-  }
+  putOnPlane(r.pos, p, f);
   return r;
 }
 
@@ -90,6 +95,16 @@ int cutPolygon(const CVert* poly, int n, const double (&d)[kMaxPoly], int p, con
   return m;
 }
 
+/// Triangle vi as the clipper's first polygon, in `poly` (colours only for smooth shading).
+template <Shade S>
+inline void loadTriangle(const Vertices& v, const uint32_t (&vi)[3], CVert* poly) {
+  for (int k = 0; k < 3; ++k) {
+    poly[k].pos = glm::dvec4(v.clip[vi[k]]);
+    poly[k].col = (S == Shade::Smooth) ? v.colors[vi[k]] : glm::vec4(0.0f);
+    poly[k].src = vi[k];
+  }
+}
+
 /// Clips triangle vi against every plane, using bufA and bufB; returns the polygon (in one of
 /// them) and sets n to its vertex count, < 3 if nothing is left. Every plane is tested (not only
 /// those flagged by the triangle's outcodes) so that adjacent triangles cut their shared edge
@@ -100,11 +115,7 @@ const CVert* clipTriangle(const Vertices& v, const uint32_t (&vi)[3], const Fram
   CVert* poly = bufA;
   CVert* next = bufB;
   n = 3;
-  for (int k = 0; k < 3; ++k) {
-    poly[k].pos = glm::dvec4(v.clip[vi[k]]);
-    poly[k].col = (S == Shade::Smooth) ? v.colors[vi[k]] : glm::vec4(0.0f);
-    poly[k].src = vi[k];
-  }
+  loadTriangle<S>(v, vi, poly);
   for (int p = 0; p < kPlaneCount; ++p) {
     double d[kMaxPoly];
     if (!planeDistances(poly, n, p, f, d)) continue;
@@ -113,6 +124,14 @@ const CVert* clipTriangle(const Vertices& v, const uint32_t (&vi)[3], const Fram
     if (n < 3) break;
   }
   return poly;
+}
+
+/// Whether a vertex made by clipping projects within the guard band and the depth range, with a
+/// finite positive 1/w.
+inline bool projectable(const glm::vec4& w) {
+  const float lim = kGuardPixels + 1.0f;
+  return std::fabs(w.x) <= lim && std::fabs(w.y) <= lim && std::fabs(w.z) <= 2.0f && w.w > 0.0f &&
+         w.w <= FLT_MAX;
 }
 
 /// Snaps the clipped polygon poly[0..n) into sv; false if a vertex cannot be projected (NaN
@@ -127,10 +146,7 @@ bool snapPolygon(const CVert* poly, int n, const Vertices& v, const Frame& f, SV
       continue;
     }
     const glm::vec4 w = projectD(poly[k].pos, f);
-    const float lim = kGuardPixels + 1.0f;
-    if (!(std::fabs(w.x) <= lim && std::fabs(w.y) <= lim && std::fabs(w.z) <= 2.0f && w.w > 0.0f &&
-          w.w <= FLT_MAX))
-      return false;
+    if (!projectable(w)) return false;
     sv[k] = makeSVert(w, &poly[k].col);
   }
   return true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "display/raster.h"
 #include "display/raster_internal.h"
@@ -33,6 +34,16 @@ glm::dvec3 toWindow(const glm::dvec4& v, int W, int H, bool zeroToOne) {
   return glm::dvec3((n.x + 1) * 0.5 * W, (n.y + 1) * 0.5 * H, zeroToOne ? n.z : (n.z + 1) * 0.5);
 }
 
+/// One Liang-Barsky boundary, p*t <= q: narrows [t0, t1]; false if the segment is parallel to
+/// the boundary and outside it.
+bool narrowToBoundary(double p, double q, double& t0, double& t1) {
+  if (p == 0) return !(q < 0);
+  const double r = q / p;
+  if (p < 0) t0 = std::max(t0, r);
+  else t1 = std::min(t1, r);
+  return true;
+}
+
 /// Liang-Barsky: the range [t0, t1] of t where p0 + t*d, t in [0, 1], lies in the viewport
 /// [0, W] x [0, H]; false if the segment misses it.
 bool clipToViewport(const glm::dvec3& p0, const glm::dvec3& d, int W, int H, double& t0,
@@ -40,15 +51,8 @@ bool clipToViewport(const glm::dvec3& p0, const glm::dvec3& d, int W, int H, dou
   t0 = 0, t1 = 1;
   bool visible = true;
   const double pq[4][2] = {{-d.x, p0.x}, {d.x, W - p0.x}, {-d.y, p0.y}, {d.y, H - p0.y}};
-  for (const auto& e : pq) {
-    if (e[0] == 0) {
-      if (e[1] < 0) visible = false;
-    } else {
-      const double r = e[1] / e[0];
-      if (e[0] < 0) t0 = std::max(t0, r);
-      else t1 = std::min(t1, r);
-    }
-  }
+  for (const auto& e : pq)
+    if (!narrowToBoundary(e[0], e[1], t0, t1)) visible = false;
   return visible && !(t0 > t1);
 }
 
@@ -106,6 +110,19 @@ void drawSegment(glm::dvec4 a, glm::dvec4 b, bool zeroToOne, const LineFragments
   rasterLine(p0 + d * t0, p0 + d * t1, std::abs(d.x) >= std::abs(d.y), frag);
 }
 
+/// The vertex indices of segment s (from `indices`, or 2s and 2s + 1 without them), checked
+/// against vertexCount.
+std::pair<size_t, size_t> segmentEnds(const uint32_t* indices, size_t s, size_t vertexCount) {
+  size_t i0 = 2 * s, i1 = 2 * s + 1;
+  if (indices) {
+    i0 = indices[2 * s];
+    i1 = indices[2 * s + 1];
+  }
+  if (i0 >= vertexCount || i1 >= vertexCount)
+    throw std::out_of_range("raster::drawLines: vertex index out of range");
+  return {i0, i1};
+}
+
 }  // namespace
 
 void drawLines(Target& target, const State& state, const glm::vec4* clip, size_t vertexCount,
@@ -118,13 +135,7 @@ void drawLines(Target& target, const State& state, const glm::vec4* clip, size_t
                            target.hits.size() == size_t(target.width) * target.height};
   const bool zeroToOne = state.clipDepth == ClipDepth::ZeroToOne;
   for (size_t s = 0; s < lineCount; ++s) {
-    size_t i0 = 2 * s, i1 = 2 * s + 1;
-    if (indices) {
-      i0 = indices[2 * s];
-      i1 = indices[2 * s + 1];
-    }
-    if (i0 >= vertexCount || i1 >= vertexCount)
-      throw std::out_of_range("raster::drawLines: vertex index out of range");
+    const auto [i0, i1] = segmentEnds(indices, s, vertexCount);
     drawSegment(glm::dvec4(clip[i0]), glm::dvec4(clip[i1]), zeroToOne, frag);
   }
 }
