@@ -8,6 +8,7 @@
 #include <GL/osmesa.h>
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -23,6 +24,22 @@ namespace {
 /// Display colour of wireframe edges.
 constexpr GLubyte kWireColour[3] = {kWireByte, kWireByte, kWireByte};
 
+/// What a pass draws at: the picture's size, the shading, back-face culling and the camera.
+struct Frame {
+  int width = 0, height = 0;
+  Shading shade = Shading::Smooth;
+  bool cullBack = false;
+  glm::mat4 projection{1.0f}, view{1.0f};
+};
+
+/// A picture size as the messages give it: "WxH".
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+/// A colour or point of the scene as the four floats OpenGL takes.
+std::array<GLfloat, 4> floats4(const glm::dvec4& v) {
+  return {GLfloat(v.x), GLfloat(v.y), GLfloat(v.z), GLfloat(v.w)};
+}
+
 /// Pushes the filled triangles back a little so that the wireframe drawn over them passes
 /// the depth test.
 void pushFilledBack() {
@@ -30,19 +47,38 @@ void pushFilledBack() {
   glPolygonOffset(1.0f, 1.0f);
 }
 
-/// Draws the element edges of the `count` vertices' triangles over the picture in the wire
-/// colour: no offset, lighting, fog, or per-vertex colours and normals.
-void drawWireOverlay(GLsizei count) {
+/// Turns off what shades the fill: the depth offset, colour material, lighting and fog.
+void stopFillShading() {
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_COLOR_MATERIAL);
   glDisable(GL_LIGHTING);
   glDisable(GL_FOG);
+}
+
+/// Lines in the wire colour alone (no per-vertex colours or normals), passing the depth test
+/// on the fill they were drawn from.
+void wireLineState() {
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_COLOR_ARRAY);
   glColor3ubv(kWireColour);
   glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
   glDepthFunc(GL_LEQUAL);
+}
+
+/// Draws the element edges of the `count` vertices' triangles over the picture in the wire
+/// colour: no offset, lighting, fog, or per-vertex colours and normals.
+void drawWireOverlay(GLsizei count) {
+  stopFillShading();
+  wireLineState();
   glDrawArrays(GL_TRIANGLES, 0, count);
+}
+
+/// Draws the fill (`drawFill`) of the `count` vertices and, when asked, the wireframe over it.
+template <class DrawFill>
+void drawUnderWireframe(bool wireframe, GLsizei count, DrawFill drawFill) {
+  if (wireframe) pushFilledBack();
+  drawFill();
+  if (wireframe) drawWireOverlay(count);
 }
 
 struct ContextDeleter {
@@ -50,52 +86,79 @@ struct ContextDeleter {
 };
 using Context = std::unique_ptr<osmesa_context, ContextDeleter>;
 
-/// Throws when a `width` x `height` picture exceeds the current context's largest viewport.
-void checkViewportFits(int width, int height) {
-  GLint maxViewport[2] = {0, 0};
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
-  if (width > maxViewport[0] || height > maxViewport[1])
-    throw std::runtime_error("OpenGL: a " + std::to_string(width) + "x" + std::to_string(height) +
-                             " picture exceeds the largest viewport, " + std::to_string(maxViewport[0]) +
-                             "x" + std::to_string(maxViewport[1]) + " (use a smaller size or --ssaa)");
+/// The largest viewport of the current context: width and height.
+std::array<GLint, 2> maxViewport() {
+  std::array<GLint, 2> max = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max.data());
+  return max;
 }
 
-/// Draws the list into `buffer` (RGBA, `type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first).
-/// Creates an RGBA context with a 24-bit depth buffer and makes it current on `buffer`.
-Context makeCurrent(int width, int height, GLenum type, void* buffer) {
+/// Throws when a `width` x `height` picture exceeds the current context's largest viewport.
+void checkViewportFits(int width, int height) {
+  const std::array<GLint, 2> max = maxViewport();
+  if (width > max[0] || height > max[1])
+    throw std::runtime_error("OpenGL: a " + sizeText(width, height) + " picture exceeds the largest viewport, " +
+                             sizeText(max[0], max[1]) + " (use a smaller size or --ssaa)");
+}
+
+/// An RGBA context with a 24-bit depth buffer.
+Context createContext() {
   Context ctx(OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr));
   if (!ctx)
     throw std::runtime_error(
         "OpenGL: OSMesaCreateContextExt failed (is Mesa's OSMesa, libosmesa6, installed?)");
-  if (!OSMesaMakeCurrent(ctx.get(), buffer, type, width, height))
-    throw std::runtime_error("OpenGL: OSMesaMakeCurrent failed for a " + std::to_string(width) + "x" +
-                             std::to_string(height) + " buffer");
+  return ctx;
+}
+
+/// Makes `ctx` current on `buffer`, a `width` x `height` picture of `type`.
+void bindContext(osmesa_context* ctx, int width, int height, GLenum type, void* buffer) {
+  if (!OSMesaMakeCurrent(ctx, buffer, type, width, height))
+    throw std::runtime_error("OpenGL: OSMesaMakeCurrent failed for a " + sizeText(width, height) + " buffer");
+}
+
+/// Throws unless the context just made current answers and fits a `width` x `height` picture.
+void checkCurrentContext(int width, int height) {
   if (!glGetString(GL_RENDERER))
     throw std::runtime_error(
         "OpenGL: glGetString(GL_RENDERER) returned null after OSMesaMakeCurrent (is libGL linked "
         "into the same binary? link OSMesa only)");
   checkViewportFits(width, height);
+}
+
+/// Creates an RGBA context with a 24-bit depth buffer and makes it current on `buffer` (RGBA,
+/// `type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first).
+Context makeCurrent(int width, int height, GLenum type, void* buffer) {
+  Context ctx = createContext();
+  bindContext(ctx.get(), width, height, type, buffer);
+  checkCurrentContext(width, height);
   return ctx;
+}
+
+/// Throws when OpenGL reports an error from the drawing.
+void checkDrawError() {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw std::runtime_error("OpenGL: drawing failed with error 0x" + std::to_string(unsigned(error)));
 }
 
 /// Checks glGetError after drawing and releases the context.
 void finish() {
   glFinish();
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-    throw std::runtime_error("OpenGL: drawing failed with error 0x" + std::to_string(unsigned(error)));
+  checkDrawError();
   OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+}
+
+/// Culls back faces, counter-clockwise fronts.
+void cullBackFaces() {
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
+  glEnable(GL_CULL_FACE);  // also culls the GL_LINE pass of the wireframe
 }
 
 /// Culls back faces (counter-clockwise fronts) or none.
 void setCulling(bool cullBack) {
-  if (cullBack) {
-    glFrontFace(GL_CCW);
-    glCullFace(GL_BACK);
-    glEnable(GL_CULL_FACE);  // also culls the GL_LINE pass of the wireframe
-  } else {
-    glDisable(GL_CULL_FACE);
-  }
+  if (cullBack) cullBackFaces();
+  else glDisable(GL_CULL_FACE);
 }
 
 /// Loads the camera: the projection and the view (modelview) matrices.
@@ -106,52 +169,93 @@ void loadCamera(const glm::mat4& projection, const glm::mat4& view) {
   glLoadMatrixf(glm::value_ptr(view));
 }
 
-/// The state every pass starts from: cleared black colour and far depth, depth test LESS, no
-/// dithering, flat or smooth shading, culling of back faces or none, and the camera matrices.
-void beginFrame(int width, int height, Shading shade, bool cullBack, const glm::mat4& projection,
-                const glm::mat4& view) {
+/// Clears the whole `width` x `height` picture to black and far depth.
+void clearFrame(int width, int height) {
   glViewport(0, 0, width, height);
   glClearColor(0, 0, 0, 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  setCulling(cullBack);
+}
+
+/// No dithering, depth test LESS, flat or smooth shading.
+void setRasterState(Shading shade) {
   glDisable(GL_DITHER);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glShadeModel(shade == Shading::Flat ? GL_FLAT : GL_SMOOTH);
-  loadCamera(projection, view);
 }
 
-void drawPass(const DrawList& list, const std::vector<glm::vec4>& colours, const glm::mat4& projection,
-              const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
-              GLenum type, void* buffer, bool cullBack) {
-  Context ctx = makeCurrent(width, height, type, buffer);
-  beginFrame(width, height, shade, cullBack, projection, view);
-  glDisable(GL_LIGHTING);
+/// The state every pass starts from: cleared black colour and far depth, depth test LESS, no
+/// dithering, flat or smooth shading, culling of back faces or none, and the camera matrices.
+void beginFrame(const Frame& f) {
+  clearFrame(f.width, f.height);
+  setCulling(f.cullBack);
+  setRasterState(f.shade);
+  loadCamera(f.projection, f.view);
+}
 
-  glEnableClientState(GL_VERTEX_ARRAY);
+/// Points the colour array at `colours`.
+void bindColours(const std::vector<glm::vec4>& colours) {
   glEnableClientState(GL_COLOR_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, list.positions.data());
   glColorPointer(4, GL_FLOAT, 0, colours.data());
+}
+
+/// Points the vertex and colour arrays at `positions` and `colours`, for unlit drawing.
+void bindColouredVertices(const std::vector<glm::vec3>& positions, const std::vector<glm::vec4>& colours) {
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, positions.data());
+  bindColours(colours);
+}
+
+/// A fresh RGBA picture of T (`type` GL_UNSIGNED_BYTE or GL_FLOAT, bottom row first) drawn by
+/// `draw` from the frame's start state, in a context of its own.
+template <class T, class Draw>
+std::vector<T> drawFrame(const Frame& f, GLenum type, Draw draw) {
+  std::vector<T> buffer(size_t(f.width) * f.height * 4);
+  Context ctx = makeCurrent(f.width, f.height, type, buffer.data());
+  beginFrame(f);
+  draw();
+  return buffer;
+}
+
+/// Draws the list unlit in `colours`, the wireframe over it when asked, and finishes.
+void drawUnlit(const DrawList& list, const std::vector<glm::vec4>& colours, bool wireframe) {
+  glDisable(GL_LIGHTING);
+  bindColouredVertices(list.positions, colours);
   const GLsizei count = GLsizei(list.positions.size());
-  if (wireframe) pushFilledBack();
-  glDrawArrays(GL_TRIANGLES, 0, count);
-  if (wireframe) drawWireOverlay(count);
+  drawUnderWireframe(wireframe, count, [&] { glDrawArrays(GL_TRIANGLES, 0, count); });
   finish();
 }
 
-void setVec4(GLenum light, GLenum name, const glm::dvec4& v) {
-  const GLfloat f[4] = {GLfloat(v.x), GLfloat(v.y), GLfloat(v.z), GLfloat(v.w)};
-  glLightfv(light, name, f);
+/// The list drawn unlit in `colours`: an RGBA picture of T (`type` GL_UNSIGNED_BYTE or GL_FLOAT,
+/// bottom row first).
+template <class T>
+std::vector<T> unlitPass(const DrawList& list, const std::vector<glm::vec4>& colours, const Frame& f,
+                         bool wireframe, GLenum type) {
+  return drawFrame<T>(f, type, [&] { drawUnlit(list, colours, wireframe); });
 }
+
+/// Sets vector parameter `name` of OpenGL light `light`.
+void setVec4(GLenum light, GLenum name, const glm::dvec4& v) { glLightfv(light, name, floats4(v).data()); }
 
 /// glLightModel: the scene's ambient light, local viewer and two-sided lighting.
 void setupLightModel(const LightModel& lm) {
-  const GLfloat ambient[4] = {GLfloat(lm.ambient.x), GLfloat(lm.ambient.y), GLfloat(lm.ambient.z),
-                              GLfloat(lm.ambient.w)};
-  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, floats4(lm.ambient).data());
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, lm.localViewer ? GL_TRUE : GL_FALSE);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, lm.twoSided ? GL_TRUE : GL_FALSE);
+}
+
+/// The light's colours: ambient, diffuse and specular.
+void setupLightColours(GLenum id, const Light& l) {
+  setVec4(id, GL_AMBIENT, l.ambient);
+  setVec4(id, GL_DIFFUSE, l.diffuse);
+  setVec4(id, GL_SPECULAR, l.specular);
+}
+
+/// The light's position: its direction with w = 0 for a directional light, else its point.
+void setupLightPosition(GLenum id, const Light& l) {
+  if (l.type == Light::Type::Directional) setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
+  else setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
 }
 
 /// The light's distance attenuation: constant, linear and quadratic factors.
@@ -161,42 +265,44 @@ void setupAttenuation(GLenum id, const Light& l) {
   glLightf(id, GL_QUADRATIC_ATTENUATION, GLfloat(l.attenuation.z));
 }
 
+/// A spot's cone: direction, cutoff and exponent.
+void setupSpot(GLenum id, const Light& l) {
+  const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
+  glLightfv(id, GL_SPOT_DIRECTION, d);
+  glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
+  glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
+}
+
 /// The spot cone: direction, cutoff and exponent for a spot, a cutoff of 180 degrees otherwise.
 void setupSpotCone(GLenum id, const Light& l) {
-  if (l.type == Light::Type::Spot) {
-    const GLfloat d[3] = {GLfloat(l.direction.x), GLfloat(l.direction.y), GLfloat(l.direction.z)};
-    glLightfv(id, GL_SPOT_DIRECTION, d);
-    glLightf(id, GL_SPOT_CUTOFF, GLfloat(l.cutoffDeg));
-    glLightf(id, GL_SPOT_EXPONENT, GLfloat(l.exponent));
-  } else {
-    glLightf(id, GL_SPOT_CUTOFF, 180.0f);
-  }
+  if (l.type == Light::Type::Spot) setupSpot(id, l);
+  else glLightf(id, GL_SPOT_CUTOFF, 180.0f);
 }
 
 /// One light as OpenGL light `id`: colours, position (w = 0 for directional), attenuation, and
 /// the spot cone (a cutoff of 180 degrees for the others).
 void setupLight(GLenum id, const Light& l) {
   glEnable(id);
-  setVec4(id, GL_AMBIENT, l.ambient);
-  setVec4(id, GL_DIFFUSE, l.diffuse);
-  setVec4(id, GL_SPECULAR, l.specular);
-  if (l.type == Light::Type::Directional)
-    setVec4(id, GL_POSITION, glm::dvec4(l.direction, 0.0));
-  else
-    setVec4(id, GL_POSITION, glm::dvec4(l.position, 1.0));
+  setupLightColours(id, l);
+  setupLightPosition(id, l);
   setupAttenuation(id, l);
   setupSpotCone(id, l);
+}
+
+/// Throws when the scene has more lights than this OpenGL supports.
+void checkLightCount(size_t count) {
+  GLint maxLights = 8;
+  glGetIntegerv(GL_MAX_LIGHTS, &maxLights);
+  if (int(count) > maxLights)
+    throw std::runtime_error("OpenGL: the scene has " + std::to_string(count) +
+                             " lights, this OpenGL supports " + std::to_string(maxLights));
 }
 
 /// The scene's light model and lights (GL_LIGHT0...), specified with the view matrix loaded:
 /// OpenGL stores their positions and spot directions in eye coordinates, i.e. fixed in the world.
 void setupLights(const Scene& scene) {
   setupLightModel(scene.lightModel);
-  GLint maxLights = 8;
-  glGetIntegerv(GL_MAX_LIGHTS, &maxLights);
-  if (int(scene.lights.size()) > maxLights)
-    throw std::runtime_error("OpenGL: the scene has " + std::to_string(scene.lights.size()) +
-                             " lights, this OpenGL supports " + std::to_string(maxLights));
+  checkLightCount(scene.lights.size());
   for (size_t i = 0; i < scene.lights.size(); ++i) setupLight(GLenum(GL_LIGHT0 + i), scene.lights[i]);
 }
 
@@ -205,17 +311,20 @@ GLint fogMode(Fog::Mode mode) {
   return mode == Fog::Mode::Linear ? GL_LINEAR : mode == Fog::Mode::Exp ? GL_EXP : GL_EXP2;
 }
 
-/// The scene's fog, when it has one.
-void setupFog(const std::optional<Fog>& fog) {
-  if (!fog) return;
-  const Fog& f = *fog;
-  glEnable(GL_FOG);
+/// The fog's parameters: mode, colour, start and end (linear), density (exp, exp2).
+void setFogParameters(const Fog& f) {
   glFogi(GL_FOG_MODE, fogMode(f.mode));
-  const GLfloat c[4] = {GLfloat(f.color.x), GLfloat(f.color.y), GLfloat(f.color.z), GLfloat(f.color.w)};
-  glFogfv(GL_FOG_COLOR, c);
+  glFogfv(GL_FOG_COLOR, floats4(f.color).data());
   glFogf(GL_FOG_START, GLfloat(f.start));
   glFogf(GL_FOG_END, GLfloat(f.end));
   glFogf(GL_FOG_DENSITY, GLfloat(f.density));
+}
+
+/// The scene's fog, when it has one.
+void setupFog(const std::optional<Fog>& fog) {
+  if (!fog) return;
+  glEnable(GL_FOG);
+  setFogParameters(*fog);
   glHint(GL_FOG_HINT, GL_NICEST);
 }
 
@@ -234,17 +343,30 @@ void setSpecularMaterial(const LocalBatch& b) {
   glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, b.shininess);
 }
 
-/// Draws each batch of the `vertexCount` vertices with its material (`setMaterial`), the
-/// wireframe over them when asked, and finishes the frame.
-void drawBatches(const std::vector<LocalBatch>& batches, size_t vertexCount, bool wireframe,
-                 void (*setMaterial)(const LocalBatch&)) {
-  if (wireframe) pushFilledBack();
+/// Draws each batch's triangles with its material (`setMaterial`).
+void drawEachBatch(const std::vector<LocalBatch>& batches, void (*setMaterial)(const LocalBatch&)) {
   for (const LocalBatch& b : batches) {
     setMaterial(b);
     glDrawArrays(GL_TRIANGLES, b.first, b.count);
   }
-  if (wireframe) drawWireOverlay(GLsizei(vertexCount));
+}
+
+/// Draws each batch of the `vertexCount` vertices with its material (`setMaterial`), the
+/// wireframe over them when asked, and finishes the frame.
+void drawBatches(const std::vector<LocalBatch>& batches, size_t vertexCount, bool wireframe,
+                 void (*setMaterial)(const LocalBatch&)) {
+  drawUnderWireframe(wireframe, GLsizei(vertexCount), [&] { drawEachBatch(batches, setMaterial); });
   finish();
+}
+
+/// Zero ambient and diffuse materials, and the vertex colour as the emission: radiosity
+/// gives the diffuse and ambient part.
+void vertexColourAsEmission() {
+  const GLfloat zero[4] = {0, 0, 0, 1};
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, zero);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, zero);
+  glColorMaterial(GL_FRONT_AND_BACK, GL_EMISSION);
+  glEnable(GL_COLOR_MATERIAL);
 }
 
 /// Lighting for the hybrid model. Diffuse and ambient come from radiosity: the material's are
@@ -254,11 +376,7 @@ void setupSpecularOnly() {
   glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SEPARATE_SPECULAR_COLOR);
   glEnable(GL_LIGHTING);
   glEnable(GL_NORMALIZE);
-  const GLfloat zero[4] = {0, 0, 0, 1};
-  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, zero);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, zero);
-  glColorMaterial(GL_FRONT_AND_BACK, GL_EMISSION);
-  glEnable(GL_COLOR_MATERIAL);
+  vertexColourAsEmission();
 }
 
 /// The radiance colours scaled by `scale` into [0, 1], where glColor values are clamped.
@@ -284,12 +402,18 @@ float peakChannel(const std::vector<glm::vec4>& radiance) {
   return peak;
 }
 
+/// The RGB part of an RGBA picture, each value passed through `convert`.
+template <class Out, class In, class Convert>
+std::vector<Out> rgbOfRgba(const std::vector<In>& rgba, Convert convert) {
+  std::vector<Out> rgb(rgba.size() / 4 * 3);
+  for (size_t p = 0; p < rgba.size() / 4; ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = convert(rgba[p * 4 + c]);
+  return rgb;
+}
+
 /// The RGB part of an RGBA picture.
 std::vector<uint8_t> rgbOf(const std::vector<GLubyte>& rgba) {
-  std::vector<uint8_t> rgb(rgba.size() / 4 * 3);
-  for (size_t p = 0; p < rgba.size() / 4; ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = rgba[p * 4 + c];
-  return rgb;
+  return rgbOfRgba<uint8_t>(rgba, [](GLubyte v) { return v; });
 }
 
 /// The local model's lighting: the scene's lights, normalised normals, material colours (not
@@ -305,18 +429,28 @@ void enableLocalLighting(const Scene& scene) {
 /// The radiance picture of the list (RGB floats, bottom row first) through a float colour
 /// buffer. glColor values are clamped to [0, 1] on the way in, so the colours are scaled into
 /// that range and the read-back scaled back.
-std::vector<float> radiancePass(const DrawList& list, const glm::mat4& projection, const glm::mat4& view,
-                                int width, int height, Shading shade, bool cullBack) {
-  const size_t pixels = size_t(width) * height;
+std::vector<float> radiancePass(const DrawList& list, const Frame& f) {
   const float peak = peakChannel(list.radiance);
   const float scale = peak > 0 ? 1.0f / peak : 1.0f;
-  std::vector<GLfloat> buffer(pixels * 4);
-  drawPass(list, scaledColours(list.radiance, scale), projection, view, width, height, shade,
-           /*wireframe=*/false, GL_FLOAT, buffer.data(), cullBack);
-  std::vector<float> radiance(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) radiance[p * 3 + c] = buffer[p * 4 + c] / scale;
-  return radiance;
+  const std::vector<GLfloat> buffer =
+      unlitPass<GLfloat>(list, scaledColours(list.radiance, scale), f, /*wireframe=*/false, GL_FLOAT);
+  return rgbOfRgba<float>(buffer, [&](GLfloat v) { return v / scale; });
+}
+
+/// The local model's frame: lit by the scene, each batch in its material.
+void drawLocal(const LocalDrawList& list, const Scene& scene, bool wireframe) {
+  enableLocalLighting(scene);
+  bindLitVertices(list.positions, list.normals);
+  drawBatches(list.batches, list.positions.size(), wireframe, setLocalMaterial);
+}
+
+/// The hybrid model's frame: the display colours as emission plus the scene's specular light.
+void drawHybrid(const HybridDrawList& list, const Scene& scene, bool wireframe) {
+  setupLights(scene);
+  setupSpecularOnly();
+  bindLitVertices(list.positions, list.normals);
+  bindColours(list.colours);
+  drawBatches(list.batches, list.positions.size(), wireframe, setSpecularMaterial);
 }
 
 }  // namespace
@@ -324,42 +458,23 @@ std::vector<float> radiancePass(const DrawList& list, const glm::mat4& projectio
 void renderOsMesaLocal(const LocalDrawList& list, const Scene& scene, const glm::mat4& projection,
                        const glm::mat4& view, int width, int height, Shading shade, bool wireframe,
                        std::vector<uint8_t>& rgb) {
-  std::vector<GLubyte> buffer(size_t(width) * height * 4);
-  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
-  enableLocalLighting(scene);
-  bindLitVertices(list.positions, list.normals);
-  drawBatches(list.batches, list.positions.size(), wireframe, setLocalMaterial);
-  rgb = rgbOf(buffer);
+  const Frame f{width, height, shade, /*cullBack=*/false, projection, view};
+  rgb = rgbOf(drawFrame<GLubyte>(f, GL_UNSIGNED_BYTE, [&] { drawLocal(list, scene, wireframe); }));
 }
 
 void renderOsMesaHybrid(const HybridDrawList& list, const Scene& scene, const glm::mat4& projection,
                         const glm::mat4& view, int width, int height, Shading shade,
                         bool wireframe, std::vector<uint8_t>& rgb) {
-  std::vector<GLubyte> buffer(size_t(width) * height * 4);
-  Context ctx = makeCurrent(width, height, GL_UNSIGNED_BYTE, buffer.data());
-  beginFrame(width, height, shade, /*cullBack=*/false, projection, view);
-  setupLights(scene);
-  setupSpecularOnly();
-
-  bindLitVertices(list.positions, list.normals);
-  glEnableClientState(GL_COLOR_ARRAY);
-  glColorPointer(4, GL_FLOAT, 0, list.colours.data());
-  drawBatches(list.batches, list.positions.size(), wireframe, setSpecularMaterial);
-  rgb = rgbOf(buffer);
+  const Frame f{width, height, shade, /*cullBack=*/false, projection, view};
+  rgb = rgbOf(drawFrame<GLubyte>(f, GL_UNSIGNED_BYTE, [&] { drawHybrid(list, scene, wireframe); }));
 }
 
 void renderOsMesa(const DrawList& list, const glm::mat4& projection, const glm::mat4& view, int width,
                   int height, Shading shade, bool wireframe, std::vector<uint8_t>& rgb,
                   std::vector<float>* radiance, bool cullBack) {
-  const size_t pixels = size_t(width) * height;
-  {
-    std::vector<GLubyte> buffer(pixels * 4);
-    drawPass(list, list.display, projection, view, width, height, shade, wireframe, GL_UNSIGNED_BYTE,
-             buffer.data(), cullBack);
-    rgb = rgbOf(buffer);
-  }
-  if (radiance) *radiance = radiancePass(list, projection, view, width, height, shade, cullBack);
+  const Frame f{width, height, shade, cullBack, projection, view};
+  rgb = rgbOf(unlitPass<GLubyte>(list, list.display, f, wireframe, GL_UNSIGNED_BYTE));
+  if (radiance) *radiance = radiancePass(list, f);
 }
 
 }  // namespace rad::viewer::detail
