@@ -29,19 +29,44 @@ double powerHeuristic(double a, double b) {
   return a * a / (a * a + b * b);
 }
 
+/// The largest channel of v.
 double maxOf(const glm::dvec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
-/// The largest relative standard error over the channels whose mean is not zero.
-double relativeError(const glm::dvec3& sum, const glm::dvec3& sumSq, long n) {
-  double worst = 0;
-  for (int c = 0; c < 3; ++c) {
-    const double mean = sum[c] / double(n);
-    if (!(mean > 0)) continue;
-    const double var = std::max(0.0, sumSq[c] / double(n) - mean * mean) / double(n - 1);
-    worst = std::max(worst, std::sqrt(var) / mean);
-  }
-  return worst;
+/// The standard error of the mean of n samples with this sum and sum of squares.
+double standardError(double sum, double sumSq, long n) {
+  const double mean = sum / double(n);
+  return std::sqrt(std::max(0.0, sumSq / double(n) - mean * mean) / double(n - 1));
 }
+
+/// The running sums of one point's path estimates.
+struct PathSums {
+  glm::dvec3 sum{0.0}, sumSq{0.0};
+  long count = 0;
+
+  /// Adds one path's estimate b.
+  void add(const glm::dvec3& b) {
+    sum += b;
+    sumSq += b * b;
+  }
+
+  /// The largest relative standard error over the channels whose mean is not zero.
+  double relativeError() const {
+    double worst = 0;
+    for (int c = 0; c < 3; ++c)
+      if (const double mean = sum[c] / double(count); mean > 0)
+        worst = std::max(worst, standardError(sum[c], sumSq[c], count) / mean);
+    return worst;
+  }
+
+  /// The mean and its standard error per channel.
+  PointEstimate estimate() const {
+    PointEstimate e;
+    e.paths = count;
+    e.B = sum / double(count);
+    for (int c = 0; c < 3; ++c) e.standardError[c] = count > 1 ? standardError(sum[c], sumSq[c], count) : 0.0;
+    return e;
+  }
+};
 
 /// Russian roulette keeps the throughput T near where it started (tStart): false ends the
 /// path; a surviving path's T is raised by the odds it survived.
@@ -52,6 +77,22 @@ bool survives(glm::dvec3& T, double tStart, Random& rng) {
   return true;
 }
 
+/// Whether the path goes on after bounce `depth`: Russian roulette from kRouletteDepth on,
+/// and never with no throughput left.
+bool goesOn(glm::dvec3& T, double tStart, int depth, Random& rng) {
+  if (depth >= kRouletteDepth && !survives(T, tStart, rng)) return false;
+  return maxOf(T) > 0;
+}
+
+/// The side of light sample s that faces d (from the lit point to s.point) and the cosine
+/// there, positive when s emits towards the lit point.
+std::pair<glm::dvec3, double> facingSide(const LightSample& s, const glm::dvec3& d) {
+  double cy = -glm::dot(s.normal, d);
+  const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
+  if (s.twoSided) cy = std::abs(cy);
+  return {lightSide, cy};
+}
+
 }  // namespace
 
 void PathTracer::addLightSample(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& T,
@@ -60,16 +101,14 @@ void PathTracer::addLightSample(const glm::dvec3& x, const glm::dvec3& nx, const
   const LightSample s = scene_.sampleLight(u0, u1, u2);
   const glm::dvec3 d = s.point - x;
   const double r2 = glm::dot(d, d), cx = glm::dot(nx, d);
-  double cy = -glm::dot(s.normal, d);
-  const glm::dvec3 lightSide = cy < 0 ? -s.normal : s.normal;
-  if (s.twoSided) cy = std::abs(cy);
-  if (cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0) &&
-      !scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide)) {
-    const double r = std::sqrt(r2);
-    const double pLight = s.pdf * r2 * r / cy, pBounce = cx / (r * kPi);  // per solid angle
-    // E/π · cosθ cosθ' / r² / pdf, cosθ = cx/r, cosθ' = cy/r.
-    B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf)) * powerHeuristic(pLight, pBounce);
-  }
+  const auto [lightSide, cy] = facingSide(s, d);
+  if (!(cx > 0 && cy > 0 && s.emission != glm::dvec3(0.0)) ||
+      scene_.occluded(x + kRayOffset * nx, s.point + kRayOffset * lightSide))
+    return;
+  const double r = std::sqrt(r2);
+  const double pLight = s.pdf * r2 * r / cy, pBounce = cx / (r * kPi);  // per solid angle
+  // E/π · cosθ cosθ' / r² / pdf, cosθ = cx/r, cosθ' = cy/r.
+  B += T * s.emission * (cx * cy / (kPi * r2 * r2 * s.pdf)) * powerHeuristic(pLight, pBounce);
 }
 
 void PathTracer::addBounceEmission(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& w,
@@ -84,6 +123,23 @@ void PathTracer::addBounceEmission(const glm::dvec3& x, const glm::dvec3& nx, co
   B += T * scene_.material(t.surface).emission * powerHeuristic(pBounce, pLight);
 }
 
+bool PathTracer::bounce(glm::dvec3& x, glm::dvec3& nx, glm::dvec3& T, Random& rng, glm::dvec3& B) const {
+  // Light reaches x two ways, each weighted by the power heuristic (Veach 1997): from a
+  // point on the emitters chosen by power (next-event estimation), and where the cosine-
+  // weighted bounce lands on an emitter. Either alone has unbounded variance somewhere: the
+  // first beside an emitter's edge (1/r²), the second for small bright emitters.
+  if (scene_.emits()) addLightSample(x, nx, T, rng, B);
+  const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
+  const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
+  if (hit.triangle < 0) return false;  // escaped
+  if (!scene_.reflects(hit)) return false;  // the back of a one-sided surface absorbs
+  addBounceEmission(x, nx, w, hit, T, B);
+  T *= scene_.material(scene_.triangles()[size_t(hit.triangle)].surface).reflectance;
+  x = hit.point;
+  nx = scene_.sideNormal(hit);
+  return true;
+}
+
 glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int surface,
                                  Random& rng) const {
   const Material& start = scene_.material(surface);
@@ -91,24 +147,8 @@ glm::dvec3 PathTracer::tracePath(const glm::dvec3& p, const glm::dvec3& n, int s
   const double tStart = maxOf(T);
   if (!(tStart > 0)) return B;
   glm::dvec3 x = p, nx = n;
-  for (int depth = 1;; ++depth) {
-    // Light reaches x two ways, each weighted by the power heuristic (Veach 1997): from a
-    // point on the emitters chosen by power (next-event estimation), and where the cosine-
-    // weighted bounce lands on an emitter. Either alone has unbounded variance somewhere: the
-    // first beside an emitter's edge (1/r²), the second for small bright emitters.
-    if (scene_.emits()) addLightSample(x, nx, T, rng, B);
-    const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
-    const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
-    if (hit.triangle < 0) break;  // escaped
-    const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
-    if (!hit.front && !scene_.twoSided(t.surface)) break;  // the back of a one-sided surface absorbs
-    addBounceEmission(x, nx, w, hit, T, B);
-    T *= scene_.material(t.surface).reflectance;
-    x = hit.point;
-    nx = hit.front ? t.normal : -t.normal;
-    if (depth >= kRouletteDepth && !survives(T, tStart, rng)) break;
-    if (!(maxOf(T) > 0)) break;
-  }
+  for (int depth = 1;; ++depth)
+    if (!bounce(x, nx, T, rng, B) || !goesOn(T, tStart, depth, rng)) break;
   return B;
 }
 
@@ -117,27 +157,16 @@ PointEstimate PathTracer::estimate(const SurfacePoint& point, uint64_t stream,
   Random rng = Random::stream(options.seed, stream);
   const glm::dvec3 p = scene_.toLocal(point.position), n = glm::normalize(point.normal);
   const long target = options.paths > 0 ? options.paths : std::max(options.maxPaths, 2L);
-  glm::dvec3 sum(0.0), sumSq(0.0);
-  long count = 0;
-  while (count < target) {
-    const long batch = std::min(kPathBatch, target - count);
-    for (long i = 0; i < batch; ++i) {
-      const glm::dvec3 b = tracePath(p, n, point.surface, rng);
-      sum += b;
-      sumSq += b * b;
-    }
-    count += batch;
-    if (options.paths <= 0 && count >= options.minPaths &&
-        relativeError(sum, sumSq, count) <= options.relativeError)
+  PathSums sums;
+  while (sums.count < target) {
+    const long batch = std::min(kPathBatch, target - sums.count);
+    for (long i = 0; i < batch; ++i) sums.add(tracePath(p, n, point.surface, rng));
+    sums.count += batch;
+    if (options.paths <= 0 && sums.count >= options.minPaths && sums.relativeError() <= options.relativeError)
       break;
   }
-  traced_ += count;
-  PointEstimate e;
-  e.paths = count;
-  e.B = sum / double(count);
-  for (int c = 0; c < 3; ++c)
-    e.standardError[c] = count > 1 ? std::sqrt(std::max(0.0, sumSq[c] / double(count) - e.B[c] * e.B[c]) / double(count - 1)) : 0.0;
-  return e;
+  traced_ += sums.count;
+  return sums.estimate();
 }
 
 std::vector<PointEstimate> PathTracer::estimate(const std::vector<SurfacePoint>& points,

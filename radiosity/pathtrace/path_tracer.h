@@ -69,6 +69,10 @@ class PathTracer {
   long pathsTraced() const { return traced_; }
 
  private:
+  /// One bounce of a path at x (unit normal nx, throughput T): the light arriving there
+  /// added to B, then x, nx and T moved to where the cosine-weighted bounce lands. False when
+  /// the path ends (it escaped, or landed on the back of a one-sided surface).
+  bool bounce(glm::dvec3& x, glm::dvec3& nx, glm::dvec3& T, Random& rng, glm::dvec3& B) const;
   /// Next-event estimation at x (unit normal nx): light from a point on the emitters chosen
   /// by power, weighted by the power heuristic against the bounce, added to B with throughput T.
   void addLightSample(const glm::dvec3& x, const glm::dvec3& nx, const glm::dvec3& T, Random& rng,

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "radiosity/pathtrace/path_tracer.h"
+#include "radiosity/pathtrace/tangent_frame.h"
 
 namespace rad::pathtrace {
 namespace {
@@ -40,37 +41,73 @@ std::pair<glm::dvec3, glm::dvec3> planeOf(const TraceScene& scene, const Ring& r
   return {scene.toLocal(ring[0]), glm::length(n) > 0 ? glm::normalize(n) : n};
 }
 
+/// Whether the surface emits (no points are placed on emitters).
 bool emits(const TraceScene& scene, int surface) { return scene.material(surface).emits(); }
+
+/// A corner in the scene's own coordinates, and an edge as its two corners in order.
+using Corner = std::tuple<double, double, double>;
+using EdgeKey = std::pair<Corner, Corner>;
+
+/// The edge (p, q) as a key, the same both ways round.
+EdgeKey edgeKey(const glm::dvec3& p, const glm::dvec3& q) {
+  const Corner u = std::make_tuple(p.x, p.y, p.z), v = std::make_tuple(q.x, q.y, q.z);
+  return u < v ? EdgeKey{u, v} : EdgeKey{v, u};
+}
+
+/// The edges of one ring of a polygon with normal n on `surface`, each with its key.
+void addRingEdges(const TraceScene& scene, const Ring& ring, const glm::dvec3& n, int surface,
+                  std::vector<std::pair<EdgeKey, Segment>>& edges) {
+  for (size_t k = 0; k < ring.size(); ++k) {
+    const glm::dvec3 a = ring[k], b = ring[(k + 1) % ring.size()];
+    if (a != b) edges.push_back({edgeKey(a, b), {scene.toLocal(a), scene.toLocal(b), n, surface}});
+  }
+}
+
+/// Every edge of a surface's polygons (outer rings and holes), with the normal of the polygon
+/// it bounds: an edge two of its polygons share comes twice.
+std::vector<std::pair<EdgeKey, Segment>> surfaceEdges(const TraceScene& scene, int surface) {
+  std::vector<std::pair<EdgeKey, Segment>> edges;
+  for (const auto& polygon : scene.scene().surfaces[size_t(surface)].polygons) {
+    const glm::dvec3 n = planeOf(scene, polygon.outer).second;
+    addRingEdges(scene, polygon.outer, n, surface, edges);
+    for (const auto& h : polygon.holes) addRingEdges(scene, h, n, surface, edges);
+  }
+  return edges;
+}
 
 /// Every surface's boundary edges (edges not shared by two of its polygons), with the normal
 /// of the polygon they bound.
 std::vector<Segment> boundaryEdges(const TraceScene& scene) {
   std::vector<Segment> out;
-  const Scene& s = scene.scene();
-  for (size_t i = 0; i < s.surfaces.size(); ++i) {
-    using Key = std::pair<std::tuple<double, double, double>, std::tuple<double, double, double>>;
-    std::map<Key, int> uses;
-    std::vector<std::pair<Key, Segment>> edges;  // keyed by the scene's own coordinates
-    auto key = [](const glm::dvec3& p, const glm::dvec3& q) -> Key {
-      auto u = std::make_tuple(p.x, p.y, p.z), v = std::make_tuple(q.x, q.y, q.z);
-      return u < v ? Key{u, v} : Key{v, u};
-    };
-    for (const auto& polygon : s.surfaces[i].polygons) {
-      const glm::dvec3 n = planeOf(scene, polygon.outer).second;
-      std::vector<const Ring*> rings{&polygon.outer};
-      for (const auto& h : polygon.holes) rings.push_back(&h);
-      for (const Ring* ring : rings)
-        for (size_t k = 0; k < ring->size(); ++k) {
-          const glm::dvec3 a = (*ring)[k], b = (*ring)[(k + 1) % ring->size()];
-          if (a == b) continue;
-          ++uses[key(a, b)];
-          edges.push_back({key(a, b), {scene.toLocal(a), scene.toLocal(b), n, int(i)}});
-        }
-    }
+  for (size_t i = 0; i < scene.scene().surfaces.size(); ++i) {
+    const auto edges = surfaceEdges(scene, int(i));
+    std::map<EdgeKey, int> uses;
+    for (const auto& e : edges) ++uses[e.first];
     for (const auto& [k, e] : edges)
       if (uses[k] == 1) out.push_back(e);
   }
   return out;
+}
+
+/// How many polygons the scene's surfaces have in all.
+size_t polygonCount(const Scene& s) {
+  size_t polygons = 0;
+  for (const auto& surface : s.surfaces) polygons += surface.polygons.size();
+  return polygons;
+}
+
+/// Whether segment e lies in the plane through `origin` with unit normal n.
+bool liesOn(const Segment& e, const glm::dvec3& origin, const glm::dvec3& n) {
+  return std::abs(glm::dot(e.a - origin, n)) < kOnPlane && std::abs(glm::dot(e.b - origin, n)) < kOnPlane;
+}
+
+/// The contact lines on `surface`: other surfaces' boundary edges lying on one of its polygons.
+void addContacts(const TraceScene& scene, const std::vector<Segment>& edges, int surface, std::vector<Segment>& out) {
+  for (const auto& polygon : scene.scene().surfaces[size_t(surface)].polygons) {
+    const auto [origin, n] = planeOf(scene, polygon.outer);
+    for (const auto& e : edges)
+      if (e.surface != surface && liesOn(e, origin, n)) out.push_back({e.a, e.b, n, surface, true});
+  }
 }
 
 /// Where points near edges go: each non-emitting surface's own boundary edges, and the
@@ -81,32 +118,24 @@ std::vector<Segment> edgeSegments(const TraceScene& scene) {
   for (const auto& e : edges)
     if (!emits(scene, e.surface)) out.push_back(e);
   const Scene& s = scene.scene();
-  size_t polygons = 0;
-  for (const auto& surface : s.surfaces) polygons += surface.polygons.size();
-  if (double(edges.size()) * double(polygons) > kMaxContactPairs) return out;
-  for (size_t i = 0; i < s.surfaces.size(); ++i) {
-    if (emits(scene, int(i))) continue;
-    for (const auto& polygon : s.surfaces[i].polygons) {
-      const auto [origin, n] = planeOf(scene, polygon.outer);
-      for (const auto& e : edges)
-        if (e.surface != int(i) && std::abs(glm::dot(e.a - origin, n)) < kOnPlane &&
-            std::abs(glm::dot(e.b - origin, n)) < kOnPlane)
-          out.push_back({e.a, e.b, n, int(i), true});
-    }
-  }
+  if (double(edges.size()) * double(polygonCount(s)) > kMaxContactPairs) return out;
+  for (size_t i = 0; i < s.surfaces.size(); ++i)
+    if (!emits(scene, int(i))) addContacts(scene, edges, int(i), out);
   return out;
+}
+
+/// A cosine-weighted direction about unit n in the frame (t, s, n).
+glm::dvec3 cosineDirection(const glm::dvec3& t, const glm::dvec3& s, const glm::dvec3& n, Random& rng) {
+  const double r = std::sqrt(rng.next()), phi = 6.283185307179586 * rng.next();
+  return r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1 - r * r)) * n;
 }
 
 /// Whether every direction from p ends on the back of a one-sided surface: p is inside a solid.
 bool enclosed(const TraceScene& scene, const glm::dvec3& p, const glm::dvec3& n, Random& rng) {
-  const glm::dvec3 t = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-  const glm::dvec3 s = glm::cross(n, t);
+  const auto [t, s] = tangentFrame(n);
   for (int k = 0; k < kEnclosureRays; ++k) {
-    const double r = std::sqrt(rng.next()), phi = 6.283185307179586 * rng.next();
-    const glm::dvec3 w = r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0, 1 - r * r)) * n;
-    const TraceHit hit = scene.intersect(p + kRayOffset * n, w, HUGE_VAL);
-    if (hit.triangle < 0 || hit.front || scene.twoSided(scene.triangles()[size_t(hit.triangle)].surface))
-      return false;
+    const TraceHit hit = scene.intersect(p + kRayOffset * n, cosineDirection(t, s, n, rng), HUGE_VAL);
+    if (hit.triangle < 0 || scene.reflects(hit)) return false;
   }
   return true;
 }
@@ -122,36 +151,69 @@ bool accept(const TraceScene& scene, const glm::dvec3& q, const glm::dvec3& n, i
   return true;
 }
 
+/// The entry whose share of the cumulative table `cdf` holds x.
+size_t pick(const std::vector<double>& cdf, double x) {
+  return std::min(cdf.size() - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin()));
+}
+
+/// Where draw `attempt` of point i of `count` falls in [0, 1): stratified on the first
+/// attempt, anywhere on the next ones.
+double stratified(int i, int count, int attempt, Random& rng) {
+  return attempt == 0 ? (i + rng.next()) / count : rng.next();
+}
+
 /// An entry of the area table: triangle t on the side facing `sign`·normal.
 struct AreaEntry {
   int triangle;
   double sign;
 };
 
-void placeByArea(const TraceScene& scene, int count, Random& rng, std::vector<SurfacePoint>& out) {
+/// The non-emitting triangles' sides (both for two-sided surfaces) and their cumulative area.
+struct AreaTable {
   std::vector<AreaEntry> entries;
   std::vector<double> cdf;
   double total = 0;
-  const auto& tris = scene.triangles();
-  for (size_t t = 0; t < tris.size(); ++t) {
-    if (emits(scene, tris[t].surface)) continue;
-    for (double sign : {1.0, -1.0}) {
-      if (sign < 0 && !scene.twoSided(tris[t].surface)) continue;
-      entries.push_back({int(t), sign});
-      cdf.push_back(total += tris[t].area);
-    }
+
+  explicit AreaTable(const TraceScene& scene) {
+    const auto& tris = scene.triangles();
+    for (size_t t = 0; t < tris.size(); ++t)
+      if (!emits(scene, tris[t].surface)) {
+        add(int(t), 1.0, tris[t].area);
+        if (scene.twoSided(tris[t].surface)) add(int(t), -1.0, tris[t].area);
+      }
   }
-  if (entries.empty()) return;
-  for (int i = 0; i < count; ++i) {
-    // Stratified by area; a point that falls in a hole or a solid is drawn again anywhere.
+
+  /// Adds triangle t's side facing sign·normal.
+  void add(int t, double sign, double area) {
+    entries.push_back({t, sign});
+    cdf.push_back(total += area);
+  }
+};
+
+/// Stratified by area; a point that falls in a hole or a solid is drawn again anywhere.
+void placeByArea(const TraceScene& scene, int count, Random& rng, std::vector<SurfacePoint>& out) {
+  const AreaTable table(scene);
+  if (table.entries.empty()) return;
+  for (int i = 0; i < count; ++i)
     for (int attempt = 0; attempt < kTries; ++attempt) {
-      const double u = attempt == 0 ? (i + rng.next()) / count : rng.next();
-      const size_t k = std::min(entries.size() - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), u * total) - cdf.begin()));
-      const TraceTriangle& t = tris[size_t(entries[k].triangle)];
-      const glm::dvec3 q = scene.pointOn(entries[k].triangle, rng.next(), rng.next());
-      if (accept(scene, q, entries[k].sign * t.normal, t.surface, rng, out, "area")) break;
+      const AreaEntry& e = table.entries[pick(table.cdf, stratified(i, count, attempt, rng) * table.total)];
+      const TraceTriangle& t = scene.triangles()[size_t(e.triangle)];
+      const glm::dvec3 q = scene.pointOn(e.triangle, rng.next(), rng.next());
+      if (accept(scene, q, e.sign * t.normal, t.surface, rng, out, "area")) break;
     }
-  }
+}
+
+/// One try at a point near segment s, at a log-uniform distance on either side of it.
+bool placeNear(const TraceScene& scene, const Segment& s, const char* tag, Random& rng,
+               std::vector<SurfacePoint>& out) {
+  const glm::dvec3 along = s.a + rng.next() * (s.b - s.a);
+  const double d = kNearest * std::pow(kFarthest / kNearest, rng.next());
+  const glm::dvec3 across = glm::normalize(glm::cross(s.normal, s.b - s.a));
+  const double side = rng.next() < 0.5 ? 1 : -1;
+  const bool twoSided = scene.twoSided(s.surface);
+  const glm::dvec3 n = (twoSided && rng.next() < 0.5) ? -s.normal : s.normal;
+  return accept(scene, along + side * d * across, n, s.surface, rng, out, tag) ||
+         accept(scene, along - side * d * across, n, s.surface, rng, out, tag);
 }
 
 /// Points near the given segments, tagged `tag`.
@@ -162,19 +224,8 @@ void placeNear(const TraceScene& scene, const std::vector<Segment>& segments, in
   for (const auto& s : segments) cdf.push_back(total += glm::length(s.b - s.a));
   if (segments.empty()) return;
   for (int i = 0; i < count; ++i)
-    for (int attempt = 0; attempt < kTries; ++attempt) {
-      const double u = attempt == 0 ? (i + rng.next()) / count : rng.next();
-      const Segment& s = segments[std::min(segments.size() - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), u * total) - cdf.begin()))];
-      const glm::dvec3 along = s.a + rng.next() * (s.b - s.a);
-      const double d = kNearest * std::pow(kFarthest / kNearest, rng.next());
-      const glm::dvec3 across = glm::normalize(glm::cross(s.normal, s.b - s.a));
-      const double side = rng.next() < 0.5 ? 1 : -1;
-      const bool twoSided = scene.twoSided(s.surface);
-      const glm::dvec3 n = (twoSided && rng.next() < 0.5) ? -s.normal : s.normal;
-      if (accept(scene, along + side * d * across, n, s.surface, rng, out, tag) ||
-          accept(scene, along - side * d * across, n, s.surface, rng, out, tag))
-        break;
-    }
+    for (int attempt = 0; attempt < kTries; ++attempt)
+      if (placeNear(scene, segments[pick(cdf, stratified(i, count, attempt, rng) * total)], tag, rng, out)) break;
 }
 
 }  // namespace
@@ -198,11 +249,10 @@ bool locatePoint(const TraceScene& scene, SurfacePoint& point, double tolerance)
   const glm::dvec3 from = scene.toLocal(point.position) + reach * n;
   const TraceHit hit = scene.intersect(from, -n, 2 * reach);
   if (hit.triangle < 0) return false;
-  const TraceTriangle& t = scene.triangles()[size_t(hit.triangle)];
-  if (!hit.front && !scene.twoSided(t.surface)) return false;  // the back of a one-sided surface
-  point.surface = t.surface;
+  if (!scene.reflects(hit)) return false;  // the back of a one-sided surface
+  point.surface = scene.triangles()[size_t(hit.triangle)].surface;
   point.position = scene.toScene(hit.point);
-  point.normal = hit.front ? t.normal : -t.normal;
+  point.normal = scene.sideNormal(hit);
   return true;
 }
 

@@ -64,6 +64,16 @@ class TraceScene {
   TraceHit intersect(const glm::dvec3& origin, const glm::dvec3& direction, double tFar) const;
   /// Whether anything lies on the open segment from `from` to `to`.
   bool occluded(const glm::dvec3& from, const glm::dvec3& to) const;
+  /// Whether the side a ray hit reflects: its front, or either side of a two-sided surface
+  /// (the back of a one-sided surface absorbs).
+  bool reflects(const TraceHit& hit) const {
+    return hit.front || twoSided(triangles_[size_t(hit.triangle)].surface);
+  }
+  /// The unit normal of the side a ray hit.
+  glm::dvec3 sideNormal(const TraceHit& hit) const {
+    const glm::dvec3& n = triangles_[size_t(hit.triangle)].normal;
+    return hit.front ? n : -n;
+  }
   /// Whether point p (on triangle t's plane) lies in one of its polygon's holes.
   bool inHole(int t, const glm::dvec3& p) const;
 
@@ -85,12 +95,34 @@ class TraceScene {
   };
 
  private:
+  /// Sets centre_ and size_ from the box of the surfaces' outer rings.
+  void fitBox();
+  /// The ring in normalised coordinates, without repeated corners or a closing repeat.
+  std::vector<glm::dvec3> localRing(const Ring& outer) const;
   /// Triangulates one polygon (normalised coordinates) into triangles_.
   void addPolygon(const Polygon& polygon, int surface);
+  /// Adds the triangle (corners, surface, holes set) with its area and unit normal, unless
+  /// it has no area.
+  void addTriangle(TraceTriangle tri);
   /// Adds the polygon's holes in its plane frame (origin, u, v) to holes_; returns their index.
   int addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,
                const glm::dvec3& v);
+  /// Triangle t's emitted power: area × emission summed over channels, twice for two sides.
+  double emittedPower(size_t t) const;
+  /// The emitters' table: lightTriangle_, lightCdf_ and lightPdf_.
+  void buildLights();
+  /// lightPdf_ from lightTriangle_ and lightCdf_.
+  void fillLightPdf();
+  /// The emitter triangle whose share of the power holds u in [0, 1).
+  int lightTriangle(double u) const;
+  /// Embree's device and an empty robust scene, in rays_.
+  void newRays();
+  /// Embree's device and scene, holding every triangle.
   void buildRays();
+  /// Attaches triangles[global[i]] as Embree geometry `id` (1: with the hole filter).
+  void attachGeometry(unsigned id, const std::vector<int>& global);
+  /// The hit on `triangle` at Embree's barycentric (u, v), seen along `direction`.
+  TraceHit hitOn(int triangle, float u, float v, const glm::dvec3& direction) const;
 
   const Scene& scene_;
   glm::dvec3 centre_{0.0};
