@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -28,15 +29,20 @@ struct Args {
   CLI::Option* cullOption = nullptr;
 };
 
-/// The options that say what is drawn and where it goes: the result, the mode, the scene, the
-/// picture.
-void addInputOptions(CLI::App& app, Args& a) {
-  app.add_option("result", a.input, "Result PLY written by `radiosity solve` (--mode radiosity)");
+/// --mode: what is drawn.
+void addModeOption(CLI::App& app, Args& a) {
   app.add_option("--mode", a.mode,
                  "radiosity: draw RESULT.ply (default); local: draw --scene with OpenGL lighting "
                  "(OSMesa only: not with --backend software, --exposure or --hdr); hybrid: "
                  "RESULT.ply's radiosity plus --scene's specular highlights (OSMesa only, no --hdr)")
       ->check(CLI::IsMember({"radiosity", "local", "hybrid"}));
+}
+
+/// The options that say what is drawn and where it goes: the result, the mode, the scene, the
+/// picture.
+void addInputOptions(CLI::App& app, Args& a) {
+  app.add_option("result", a.input, "Result PLY written by `radiosity solve` (--mode radiosity)");
+  addModeOption(app, a);
   app.add_option("--scene", a.scenePath,
                  "Scene JSON with `lights`, for --mode local, --mode hybrid and --ladder (for the last "
                  "two, the scene RESULT.ply was solved from)");
@@ -49,27 +55,42 @@ void addSizeOptions(CLI::App& app, Args& a) {
   app.add_option("--height", a.o.height, "Image height in pixels (default 512)")->check(CLI::Range(1, 16384));
 }
 
-/// How colours are made: shading, backend, exposure.
-void addShadingOptions(CLI::App& app, Args& a) {
+/// --shade: smooth or flat.
+void addShadeOption(CLI::App& app, Args& a) {
   app.add_option("--shade", a.shade,
                  "smooth: Gouraud on vertex radiosity (default); flat: each element's own value "
                  "(--mode local: vertex normals, or face normals with GL_FLAT)")
       ->check(CLI::IsMember({"smooth", "flat"}));
+}
+
+/// --backend: OSMesa or the raster core.
+void addBackendOption(CLI::App& app, Args& a) {
   app.add_option("--backend", a.backend,
                  "osmesa: OpenGL through OSMesa (default); software: the raster core, same picture "
                  "(radiosity mode only)")
       ->check(CLI::IsMember({"osmesa", "software"}));
+}
+
+/// How colours are made: shading, backend, exposure.
+void addShadingOptions(CLI::App& app, Args& a) {
+  addShadeOption(app, a);
+  addBackendOption(app, a);
   a.exposureOption = app.add_option("--exposure", a.exposure, "Exposure K (default: the file's `exposure` comment)")
                          ->check(CLI::PositiveNumber);
 }
 
-/// What is seen and how finely: culling, the element edges, the camera, supersampling.
-void addViewOptions(CLI::App& app, Args& a) {
+/// --cull: none or back faces.
+void addCullOption(CLI::App& app, Args& a) {
   a.cullOption = app.add_option("--cull", a.cull,
                                 "none: draw every face (default); back: remove back faces, clockwise on "
                                 "screen (GL_CULL_FACE with GL_BACK, CCW front faces; both backends; radiosity "
                                 "mode only)")
                      ->check(CLI::IsMember({"none", "back"}));
+}
+
+/// What is seen and how finely: culling, the element edges, the camera, supersampling.
+void addViewOptions(CLI::App& app, Args& a) {
+  addCullOption(app, a);
   app.add_flag("--wireframe", a.o.wireframe, "Overlay the element edges in a dark colour (both backends)");
   app.add_option("--camera", a.camera,
                  "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F as gluLookAt/gluPerspective, fov vertical "
@@ -88,11 +109,25 @@ void addOtherPictureOptions(CLI::App& app, Args& a) {
   app.add_option("--hdr", a.hdr, "Also write the linear radiance B/pi as Radiance HDR (.hdr)");
 }
 
-/// Usage checks of --ladder.
-void checkLadderArgs(const Args& a) {
+/// Every option, in the order --help lists them.
+void addOptions(CLI::App& app, Args& a) {
+  addInputOptions(app, a);
+  addSizeOptions(app, a);
+  addShadingOptions(app, a);
+  addViewOptions(app, a);
+  addOtherPictureOptions(app, a);
+}
+
+/// Usage checks of what --ladder needs: no --mode, a result and a scene.
+void checkLadderInputs(const Args& a) {
   if (a.mode != "radiosity") throw CLI::ValidationError("--ladder", "draws every mode itself: no --mode");
   if (a.input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required with --ladder");
   if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --ladder");
+}
+
+/// Usage checks of --ladder.
+void checkLadderArgs(const Args& a) {
+  checkLadderInputs(a);
   if (a.backend == "software")
     throw CLI::ValidationError("--backend", "--ladder needs OpenGL: use --backend osmesa");
   if (a.o.wireframe) throw CLI::ValidationError("--wireframe", "not with --ladder (it has its own tile)");
@@ -106,13 +141,23 @@ void checkRadiosityArgs(const Args& a) {
     throw CLI::ValidationError("--scene", "belongs to --mode local, --mode hybrid or --ladder; --mode radiosity takes RESULT.ply");
 }
 
+/// Usage check of an OpenGL-only `mode`: not --backend software.
+void checkOpenGlBackend(const Args& a, const std::string& mode) {
+  if (a.backend == "software")
+    throw CLI::ValidationError("--backend", mode + " is OpenGL-only: use --backend osmesa");
+}
+
+/// Usage check of a `mode` without radiance: no --hdr.
+void checkNoHdr(const Args& a, const std::string& mode) {
+  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for " + mode);
+}
+
 /// Usage checks of --mode hybrid.
 void checkHybridArgs(const Args& a) {
   if (a.input.empty()) throw CLI::ValidationError("result", "RESULT.ply is required (--mode hybrid)");
   if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode hybrid");
-  if (a.backend == "software")
-    throw CLI::ValidationError("--backend", "--mode hybrid is OpenGL-only: use --backend osmesa");
-  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode hybrid");
+  checkOpenGlBackend(a, "--mode hybrid");
+  checkNoHdr(a, "--mode hybrid");
 }
 
 /// Usage checks of --mode local.
@@ -120,10 +165,9 @@ void checkLocalArgs(const Args& a) {
   if (a.scenePath.empty()) throw CLI::ValidationError("--scene", "SCENE.json is required with --mode local");
   if (!a.input.empty())
     throw CLI::ValidationError("result", "--mode local takes --scene SCENE.json, not a result PLY");
-  if (a.backend == "software")
-    throw CLI::ValidationError("--backend", "--mode local is OpenGL-only: use --backend osmesa");
+  checkOpenGlBackend(a, "--mode local");
   if (*a.exposureOption) throw CLI::ValidationError("--exposure", "is radiosity-only, not for --mode local");
-  if (!a.hdr.empty()) throw CLI::ValidationError("--hdr", "is radiosity-only, not for --mode local");
+  checkNoHdr(a, "--mode local");
 }
 
 /// The supersampled picture must stay within the largest size.
@@ -132,14 +176,24 @@ void checkSupersampledSize(const Args& a) {
     throw CLI::ValidationError("--ssaa", "width and height times --ssaa must be at most 16384");
 }
 
-/// The usage checks after parsing: which options go with which mode. Throws CLI::ValidationError.
-void checkArgs(const Args& a) {
+/// --cull is for radiosity mode alone.
+void checkCullArgs(const Args& a) {
   if (*a.cullOption && (a.ladder || a.mode != "radiosity"))
     throw CLI::ValidationError("--cull", "is radiosity-only, not for --mode local, --mode hybrid or --ladder");
+}
+
+/// The usage checks of the chosen mode (or the ladder).
+void checkModeArgs(const Args& a) {
   if (a.ladder) checkLadderArgs(a);
   else if (a.mode == "radiosity") checkRadiosityArgs(a);
   else if (a.mode == "hybrid") checkHybridArgs(a);
   else checkLocalArgs(a);
+}
+
+/// The usage checks after parsing: which options go with which mode. Throws CLI::ValidationError.
+void checkArgs(const Args& a) {
+  checkCullArgs(a);
+  checkModeArgs(a);
   checkSupersampledSize(a);
 }
 
@@ -175,11 +229,17 @@ Rendered timed(Draw draw) {
   return r;
 }
 
+/// Applies --camera, when given, over the view `source` (the result or the local scene) gives.
+template <class Source>
+void applyCameraArg(const Args& a, const Source& source, RenderOptions& o) {
+  if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(source, RenderOptions{}));
+}
+
 /// --mode local: loads the scene, applies --camera over its view, and renders it lit.
 Rendered renderLocalMode(const Args& a, RenderOptions o) {
   const LocalScene local = loadLocalScene(a.scenePath);
   printWarnings(local.scene);
-  if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(local, RenderOptions{}));
+  applyCameraArg(a, local, o);
   return timed([&] { return renderLocal(local, o); });
 }
 
@@ -192,15 +252,21 @@ rad::Scene sceneBesideResult(const Args& a) {
   return scene;
 }
 
-/// Loads the inputs of the chosen mode, applies --camera over the view they give, and renders.
-Rendered renderRequested(const Args& a, RenderOptions o) {
-  if (a.mode == "local") return renderLocalMode(a, o);
+/// The modes that draw a result (radiosity, hybrid, the ladder): loads the result and the
+/// scene beside it, applies --camera over the result's view, and renders.
+Rendered renderResultMode(const Args& a, RenderOptions o) {
   const rad::ResultFile mesh = rad::readResultFile(a.input);
   const rad::Scene scene = sceneBesideResult(a);
-  if (!a.camera.empty()) o.camera = parseCamera(a.camera, effectiveCamera(mesh, RenderOptions{}));
+  applyCameraArg(a, mesh, o);
   if (a.ladder) return timed([&] { return renderLadder(mesh, scene, o); });
   if (a.mode == "hybrid") return timed([&] { return renderHybrid(mesh, scene, o); });
   return timed([&] { return render(mesh, o); });
+}
+
+/// Loads the inputs of the chosen mode, applies --camera over the view they give, and renders.
+Rendered renderRequested(const Args& a, const RenderOptions& o) {
+  if (a.mode == "local") return renderLocalMode(a, o);
+  return renderResultMode(a, o);
 }
 
 /// The report's opening: what was drawn, how, and in how long.
@@ -228,19 +294,36 @@ void run(const Args& a) {
   writeAndReport(a, o, renderRequested(a, o));
 }
 
+/// Prints "radview: error: <what>"; the exit code of an error, 1.
+int reportError(const char* what) {
+  std::cerr << "radview: error: " << what << "\n";
+  return 1;
+}
+
 /// Runs, printing any error as "radview: error: ..."; the exit code.
 int runReportingErrors(const Args& a) {
   try {
     run(a);
   } catch (const std::bad_alloc&) {
-    std::cerr << "radview: error: out of memory: the picture or the mesh needs more than this machine "
-                 "has (lower --width, --height or --ssaa)\n";
-    return 1;
+    return reportError("out of memory: the picture or the mesh needs more than this machine has (lower "
+                       "--width, --height or --ssaa)");
   } catch (const std::exception& e) {
-    std::cerr << "radview: error: " << e.what() << "\n";
-    return 1;
+    return reportError(e.what());
   }
   return 0;
+}
+
+/// Parses and checks the command line; the exit code when it stops there (0 after --help, 2
+/// on a usage error), else none.
+std::optional<int> parseCommandLine(CLI::App& app, Args& args, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+    checkArgs(args);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, or the usage error
+    return code == 0 ? 0 : 2;
+  }
+  return std::nullopt;
 }
 
 const char* const kDescription =
@@ -257,17 +340,7 @@ const char* const kDescription =
 int main(int argc, char** argv) {
   CLI::App app{kDescription};
   Args args;
-  addInputOptions(app, args);
-  addSizeOptions(app, args);
-  addShadingOptions(app, args);
-  addViewOptions(app, args);
-  addOtherPictureOptions(app, args);
-  try {
-    app.parse(argc, argv);
-    checkArgs(args);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help, or the usage error
-    return code == 0 ? 0 : 2;
-  }
+  addOptions(app, args);
+  if (const std::optional<int> code = parseCommandLine(app, args, argc, argv)) return *code;
   return runReportingErrors(args);
 }
