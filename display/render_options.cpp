@@ -144,6 +144,14 @@ glm::mat4 viewProjection(const ResultFile& mesh, const Camera& c, int width, int
 
 namespace internal {
 
+FrameView frameView(const ResultFile& mesh, const Camera& c, const RenderOptions& o) {
+  FrameView f;
+  f.width = o.width * o.ssaa;
+  f.height = o.height * o.ssaa;
+  f.mvp = viewProjection(mesh, c, f.width, f.height, &f.projection, &f.view);
+  return f;
+}
+
 void checkSize(const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.ssaa < 1 || int64_t(o.width) * o.ssaa > raster::kMaxSize ||
       int64_t(o.height) * o.ssaa > raster::kMaxSize)

@@ -29,6 +29,18 @@ std::vector<float> downsampleFloats(const std::vector<float>& big, int width, in
 /// (bottom row first, options.ssaa times larger per axis).
 Image imageOf(const std::vector<uint8_t>& big, const RenderOptions& options);
 
+/// The camera of a render at its drawn size: options.width × options.height times ssaa.
+struct FrameView {
+  int width = 0, height = 0;
+  glm::mat4 projection{1.0f}, view{1.0f}, mvp{1.0f};
+};
+
+/// The view of `mesh` through camera `c` at the drawn size of `options` (viewProjection).
+FrameView frameView(const ResultFile& mesh, const Camera& c, const RenderOptions& options);
+
+/// The points in clip space: raster::transform by `mvp`.
+std::vector<glm::vec4> clipCoordinates(const glm::mat4& mvp, const std::vector<glm::vec3>& points);
+
 /// Whether a render draws the file's own display colours: Gouraud at the file's exposure.
 bool showsStoredColours(const ResultFile& mesh, const RenderOptions& options);
 
