@@ -3,14 +3,15 @@
 // mesh and for a ladder of settings solved the way `radiosity solve` solves, with the front of
 // the fastest setting for each error.
 #include <algorithm>
-#include <cmath>
-
-#include <glm/common.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <sstream>
+
+#include <glm/common.hpp>
 
 #include "mesh/error.h"
 #include "mesh/output_file.h"
@@ -49,6 +50,9 @@ struct Curve {
   Series series;
   std::vector<long> steps;  ///< shots or sweeps
 
+  /// An empty curve called `name`.
+  explicit Curve(std::string name) : series{std::move(name), {}} {}
+
   /// One history row: the time, the error and the shots or sweeps so far.
   void add(double seconds, double error, long step) {
     series.points.push_back({seconds, error});
@@ -70,6 +74,7 @@ std::vector<glm::dvec3> emissionOf(const PatchMesh& mesh) {
   return E;
 }
 
+/// Seconds from `since` to now.
 double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
@@ -81,33 +86,45 @@ MeshedScene meshQuietly(Scene scene, const SolverBlock& flags) {
   return meshScene(std::move(scene), settings);
 }
 
-/// One progressive run on fixed factors; `ambient` shows B + ρ·ambient.
-Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSource& factors,
-                       SolverOptions options, bool ambient, const TrueError& truth) {
-  Curve c{{name, {}}, {}};
+/// The true error of what the solver shows now; `ambient` shows B + ρ·ambient.
+double shownError(const ProgressiveSolver& solver, const PatchMesh& mesh, bool ambient, const TrueError& truth) {
+  const glm::dvec3 a = ambient ? glm::max(solver.ambient(), glm::dvec3(0.0)) : glm::dvec3(0.0);
+  return truth.measure(shownVertexRadiosity(mesh, solver.radiosity(), a, nullptr)).rms;
+}
+
+/// The options of a variant's progressive run: the user's, stopped at kVariantTolerance (or
+/// theirs if lower) or kMaxShotsPerPatch shots per patch.
+SolverOptions variantOptions(SolverOptions options, const PatchMesh& mesh) {
   options.tolerance = std::min(options.tolerance, kVariantTolerance);
   options.maxShots = kMaxShotsPerPatch * long(mesh.patches.size());
-  ProgressiveSolver solver(mesh, factors, options);
-  auto error = [&] {
-    const glm::dvec3 a = ambient ? glm::max(solver.ambient(), glm::dvec3(0.0)) : glm::dvec3(0.0);
-    return truth.measure(shownVertexRadiosity(mesh, solver.radiosity(), a, nullptr)).rms;
-  };
+  return options;
+}
+
+/// One progressive run on fixed factors; `ambient` shows B + ρ·ambient.
+Curve progressiveCurve(const std::string& name, const PatchMesh& mesh, FactorSource& factors,
+                       const SolverOptions& options, bool ambient, const TrueError& truth) {
+  Curve c(name);
+  ProgressiveSolver solver(mesh, factors, variantOptions(options, mesh));
   long next = 1;
-  c.add(0, error(), 0);
+  c.add(0, shownError(solver, mesh, ambient, truth), 0);
   while (solver.step())
-    if (rowDue(solver.shots(), next))
-      c.add(solver.seconds(), error(), solver.shots());  // the solver's own time: measuring is not in it
+    if (rowDue(solver.shots(), next))  // the solver's own time: measuring is not in it
+      c.add(solver.seconds(), shownError(solver, mesh, ambient, truth), solver.shots());
   return c;
 }
 
-/// Jacobi or Gauss–Seidel, starting at the time the matrix took to build.
-Curve gatheringCurve(const std::string& name, const TransportMatrix& system, double start,
-                     bool gaussSeidel, const PatchMesh& mesh, const TrueError& truth) {
-  Curve c{{name, {}}, {}};
-  c.add(start, truth.measure(vertexRadiosity(mesh, emissionOf(mesh))).rms, 0);
+/// A gathering solve's sweeps as rows of a curve, its clock stopped while it measures; it
+/// stops the solve once the error settles.
+struct SweepRecorder {
+  Curve& c;
+  const PatchMesh& mesh;
+  const TrueError& truth;
+  double start;  ///< the time the matrix took to build
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
   double measuring = 0, last = HUGE_VAL;
-  auto t0 = std::chrono::steady_clock::now();
-  auto record = [&](int sweep, const std::vector<glm::dvec3>& B) {
+
+  /// Records sweep `sweep` (radiosities B); false once the error has settled.
+  bool operator()(int sweep, const std::vector<glm::dvec3>& B) {
     auto m0 = std::chrono::steady_clock::now();
     const double e = truth.measure(vertexRadiosity(mesh, B)).rms;
     c.add(start + seconds(t0) - measuring, e, sweep);
@@ -115,9 +132,17 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
     const bool settled = std::abs(e - last) < 1e-5 * e;
     last = e;
     return !settled;
-  };
-  if (gaussSeidel) system.solveGaussSeidel(kMaxSweeps, record);
-  else system.solveJacobi(kMaxSweeps, record);
+  }
+};
+
+/// Jacobi or Gauss–Seidel, starting at the time the matrix took to build.
+Curve gatheringCurve(const std::string& name, const TransportMatrix& system, double start,
+                     bool gaussSeidel, const PatchMesh& mesh, const TrueError& truth) {
+  Curve c(name);
+  c.add(start, truth.measure(vertexRadiosity(mesh, emissionOf(mesh))).rms, 0);
+  SweepRecorder record{c, mesh, truth, start};
+  if (gaussSeidel) system.solveGaussSeidel(kMaxSweeps, std::ref(record));
+  else system.solveJacobi(kMaxSweeps, std::ref(record));
   return c;
 }
 
@@ -135,26 +160,30 @@ std::string overshootingName(double overshoot) {
   return name;
 }
 
-/// Plain, ambient and overshooting progressive refinement, Jacobi and Gauss–Seidel on one
-/// uniform mesh's factors, one thread each; element values shown through vertexRadiosity.
-std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const std::vector<ReferencePoint>& points) {
-  const std::string& reference = o.reference;
-  const MeshedScene meshed = meshQuietly(std::move(scene), uniformFlags(o.flags));
-  const PatchMesh& mesh = meshed.mesh;
-  const TrueError truth(mesh, meshed.scene, points, reference);
-  SolverOptions options = solverOptions(meshed.settings);
-  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(meshed, 1);
-  auto t0 = std::chrono::steady_clock::now();
-  TransportMatrix system(mesh, *factors, options);
-  const double matrixSeconds = seconds(t0);
+/// Plain, ambient and overshooting progressive refinement on the factors.
+std::vector<Curve> progressiveCurves(const ConvergenceOptions& o, const PatchMesh& mesh, FactorSource& factors,
+                                     SolverOptions options, const TrueError& truth) {
   SolverOptions overshooting = options;
   overshooting.overshoot = o.flags.overshoot.value_or(kOvershootCurve);
   options.overshoot = 1;  // the plain curves shoot plainly, whatever the settings say
   const std::string name = overshootingName(overshooting.overshoot);
-  std::vector<Curve> curves;
-  curves.push_back(progressiveCurve("progressive", mesh, *factors, options, false, truth));
-  curves.push_back(progressiveCurve("progressive + ambient", mesh, *factors, options, true, truth));
-  curves.push_back(progressiveCurve(name, mesh, *factors, overshooting, false, truth));
+  return {progressiveCurve("progressive", mesh, factors, options, false, truth),
+          progressiveCurve("progressive + ambient", mesh, factors, options, true, truth),
+          progressiveCurve(name, mesh, factors, overshooting, false, truth)};
+}
+
+/// Plain, ambient and overshooting progressive refinement, Jacobi and Gauss–Seidel on one
+/// uniform mesh's factors, one thread each; element values shown through vertexRadiosity.
+std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const std::vector<ReferencePoint>& points) {
+  const MeshedScene meshed = meshQuietly(std::move(scene), uniformFlags(o.flags));
+  const PatchMesh& mesh = meshed.mesh;
+  const TrueError truth(mesh, meshed.scene, points, o.reference);
+  const SolverOptions options = solverOptions(meshed.settings);
+  std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(meshed, 1);
+  auto t0 = std::chrono::steady_clock::now();
+  TransportMatrix system(mesh, *factors, options);
+  const double matrixSeconds = seconds(t0);
+  std::vector<Curve> curves = progressiveCurves(o, mesh, *factors, options, truth);
   curves.push_back(gatheringCurve("Jacobi", system, matrixSeconds, false, mesh, truth));
   curves.push_back(gatheringCurve("Gauss-Seidel", system, matrixSeconds, true, mesh, truth));
   std::fprintf(stderr, "radiosity: variants on %d uniform elements (one thread; matrix %.2f s)\n",
@@ -168,24 +197,27 @@ struct Rung {
   SolverBlock flags;
 };
 
+/// The rung `name`: the user's flags with `change` applied.
+template <class Change>
+Rung rung(const std::string& name, const SolverBlock& user, Change change) {
+  Rung r{name, user};
+  change(r.flags);
+  return r;
+}
+
+/// The ladder's rungs: the defaults, then one setting each made coarser or finer.
 std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
   const Settings defaults = resolveSettings(scene, user);
   const double edge = defaults.maxElementEdge;
-  std::vector<Rung> rungs;
-  auto add = [&](const std::string& name, auto change) {
-    Rung r{name, user};
-    change(r.flags);
-    rungs.push_back(r);
-  };
-  add("defaults", [](SolverBlock&) {});
-  add("adaptive off", [](SolverBlock& f) { f.adaptive = false; });
-  add("elements x1.6", [&](SolverBlock& f) { f.maxElementEdge = edge * 1.6; });
-  add("elements /1.6", [&](SolverBlock& f) { f.maxElementEdge = edge / 1.6; });
-  add("hemicube R/2", [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution / 2; });
-  add("hemicube Rx2", [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution * 2; });
-  add("4 points per patch", [&](SolverBlock& f) { f.shooterSamples = 4 * defaults.shooterSamples; });
-  add("emitter points /4", [&](SolverBlock& f) { f.emitterSamples = std::max(1, defaults.emitterSamples / 4); });
-  return rungs;
+  return {rung("defaults", user, [](SolverBlock&) {}),
+          rung("adaptive off", user, [](SolverBlock& f) { f.adaptive = false; }),
+          rung("elements x1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge * 1.6; }),
+          rung("elements /1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge / 1.6; }),
+          rung("hemicube R/2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution / 2; }),
+          rung("hemicube Rx2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution * 2; }),
+          rung("4 points per patch", user, [&](SolverBlock& f) { f.shooterSamples = 4 * defaults.shooterSamples; }),
+          rung("emitter points /4", user,
+               [&](SolverBlock& f) { f.emitterSamples = std::max(1, defaults.emitterSamples / 4); })};
 }
 
 /// The rung's line on stderr: its mesh, its times and its final true error.
@@ -195,24 +227,36 @@ void printRung(const Rung& rung, const MeshedScene& meshed, double meshing, cons
                100 * c.series.points.back().second);
 }
 
-/// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays
-/// and refinement; the error of what a viewer shows at each history row.
-Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points,
-                  const std::string& reference) {
-  Curve c{{rung.name, {}}, {}};
+/// The rung's flags, stopped at kLadderTolerance unless the user gave a tolerance.
+SolverBlock ladderFlags(const Rung& rung) {
   SolverBlock flags = rung.flags;
   if (!flags.tolerance) flags.tolerance = kLadderTolerance;
-  auto t0 = std::chrono::steady_clock::now();
-  const MeshedScene meshed = meshQuietly(scene, flags);
-  const double meshing = seconds(t0);
-  const TrueError truth(meshed.mesh, meshed.scene, points, reference);
-  RadiositySolve solve(meshed);
+  return flags;
+}
+
+/// Runs the solve to its end, the error of what a viewer shows added to c at each history
+/// row and at the end, its time counted from `meshing` seconds.
+void solveRecording(RadiositySolve& solve, const MeshedScene& meshed, const TrueError& truth, double meshing,
+                    Curve& c) {
   const ProgressiveSolver& solver = solve.solver();
   auto record = [&] { c.add(meshing + solver.seconds(), trueErrorNow(solve, meshed, truth).rms, solver.shots()); };
   long next = 1;
   while (solve.step())
     if (rowDue(solver.shots(), next)) record();
   record();
+}
+
+/// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays
+/// and refinement; the error of what a viewer shows at each history row.
+Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<ReferencePoint>& points,
+                  const std::string& reference) {
+  Curve c(rung.name);
+  auto t0 = std::chrono::steady_clock::now();
+  const MeshedScene meshed = meshQuietly(scene, ladderFlags(rung));
+  const double meshing = seconds(t0);
+  const TrueError truth(meshed.mesh, meshed.scene, points, reference);
+  RadiositySolve solve(meshed);
+  solveRecording(solve, meshed, truth, meshing, c);
   printRung(rung, meshed, meshing, c);
   return c;
 }
@@ -227,7 +271,7 @@ std::vector<std::pair<double, double>> pointsByTime(const std::vector<Curve>& cu
 
 /// The lowest error reached by any ladder curve by each time: the fastest setting per error.
 Curve front(const std::vector<Curve>& curves) {
-  Curve f{{"front (ladder)", {}}, {}};
+  Curve f("front (ladder)");
   double best = HUGE_VAL;
   for (const auto& [t, e] : pointsByTime(curves))
     if (e < best) best = e, f.add(t, e, 0);
@@ -247,13 +291,18 @@ void addLadder(Curves& curves, const ConvergenceOptions& o, const Scene& scene,
   curves.push_back({"front", std::move(f)});
 }
 
+/// The curve's rows of the CSV, one per history row.
+void writeCsvRows(std::ostream& csv, const std::string& group, const Curve& c) {
+  for (size_t i = 0; i < c.steps.size(); ++i)
+    csv << group << "," << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
+        << c.series.points[i].second << "\n";
+}
+
+/// The data as CSV: group,name,seconds,steps,error.
 std::string csvOf(const Curves& curves) {
   std::ostringstream csv;
   csv << "group,name,seconds,steps,error\n";
-  for (const auto& [group, c] : curves)
-    for (size_t i = 0; i < c.steps.size(); ++i)
-      csv << group << "," << c.series.name << "," << c.series.points[i].first << "," << c.steps[i] << ","
-          << c.series.points[i].second << "\n";
+  for (const auto& [group, c] : curves) writeCsvRows(csv, group, c);
   return csv.str();
 }
 
@@ -267,6 +316,7 @@ std::vector<Series> plotSeries(const Curves& curves) {
   return series;
 }
 
+/// The plot of every curve as SVG, titled with the reference file.
 std::string svgOf(const Curves& curves, const std::string& reference) {
   const std::vector<Series> series = plotSeries(curves);
   return svgLogPlot("True error (RMS relative, vs " + reference + ") against run time", "seconds", "true error",
@@ -281,20 +331,44 @@ void printSummary(const Curves& curves) {
                  c.steps.back());
 }
 
+/// Every curve the options ask for: the variants, then the ladder and its front.
+Curves allCurves(const ConvergenceOptions& o, const Scene& scene, const std::vector<ReferencePoint>& points) {
+  Curves curves;
+  if (o.variants)
+    for (auto& c : variantCurves(o, scene, points)) curves.push_back({"variant", std::move(c)});
+  if (o.ladder) addLadder(curves, o, scene, points);
+  return curves;
+}
+
+/// Writes the plot and, when asked for, the CSV.
+void writeOutputs(const ConvergenceOptions& o, const Curves& curves) {
+  const std::string svg = svgOf(curves, o.reference);
+  writeFileAtomically(o.output, [&](std::ostream& out) { out << svg; });
+  if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csvOf(curves); });
+}
+
 void runConvergence(const ConvergenceOptions& o) {
   checkOutputPath(o.output);
   if (!o.csv.empty()) checkOutputPath(o.csv);
   const std::vector<ReferencePoint> points = readReferenceFile(o.reference).points;
   Scene scene = loadSceneToSolve(o.scene);
   printWarnings(scene.warnings);
-  Curves curves;
-  if (o.variants)
-    for (auto& c : variantCurves(o, scene, points)) curves.push_back({"variant", std::move(c)});
-  if (o.ladder) addLadder(curves, o, scene, points);
-  const std::string svg = svgOf(curves, o.reference);
-  writeFileAtomically(o.output, [&](std::ostream& out) { out << svg; });
-  if (!o.csv.empty()) writeFileAtomically(o.csv, [&](std::ostream& out) { out << csvOf(curves); });
+  const Curves curves = allCurves(o, scene, points);
+  writeOutputs(o, curves);
   printSummary(curves);
+}
+
+/// The command's own flags: what to run and the stopping and overshooting of its curves.
+void addCurveFlags(CLI::App& sub, ConvergenceOptions& o) {
+  sub.add_option("--reference", o.reference, "Reference CSV from 'radiosity reference' for this scene")->required();
+  sub.add_option("--csv", o.csv, "The data: group,name,seconds,steps,error");
+  sub.add_option("--tolerance", o.flags.tolerance,
+                 "The ladder's solves stop when unshot/emitted power falls below this (default 1e-4)")
+      ->check(CLI::Range(1e-300, 1.0));
+  sub.add_option("--overshoot", o.flags.overshoot, "ω of the overshooting curve (default 1.3)")
+      ->check(CLI::Range(1.0, 2.0));
+  sub.add_option("--variants", o.variants, "Run the solver variants on one mesh, true or false (default true)");
+  sub.add_option("--ladder", o.ladder, "Run the accuracy ladder of settings, true or false (default true)");
 }
 
 }  // namespace
@@ -307,15 +381,7 @@ Command addConvergenceCommand(CLI::App& app) {
                      "overshooting, Jacobi and Gauss-Seidel on one uniform mesh, and a ladder of "
                      "settings solved as 'radiosity solve' does, with its front");
   addSceneAndOutput(*sub, o->scene, o->output, "Plot (SVG)");
-  sub->add_option("--reference", o->reference, "Reference CSV from 'radiosity reference' for this scene")->required();
-  sub->add_option("--csv", o->csv, "The data: group,name,seconds,steps,error");
-  sub->add_option("--tolerance", o->flags.tolerance,
-                  "The ladder's solves stop when unshot/emitted power falls below this (default 1e-4)")
-      ->check(CLI::Range(1e-300, 1.0));
-  sub->add_option("--overshoot", o->flags.overshoot, "ω of the overshooting curve (default 1.3)")
-      ->check(CLI::Range(1.0, 2.0));
-  sub->add_option("--variants", o->variants, "Run the solver variants on one mesh, true or false (default true)");
-  sub->add_option("--ladder", o->ladder, "Run the accuracy ladder of settings, true or false (default true)");
+  addCurveFlags(*sub, *o);
   addMeshFlags(*sub, o->flags);
   addSolverFlags(*sub, o->flags);
   return {sub, [o] { runConvergence(*o); }};
