@@ -27,32 +27,38 @@ struct FormFactorOptions {
   SolverBlock flags;
 };
 
-/// The area-weighted centroid of a surface's front-side elements.
-glm::dvec3 areaCentroid(const PatchMesh& mesh, int surface) {
+/// The front-side elements of one surface.
+std::vector<int> frontElementsOf(const PatchMesh& mesh, int surface) {
+  std::vector<int> elements;
+  for (int e = 0; e < mesh.elementCount(); ++e)
+    if (mesh.surface(e) == surface && mesh.side(e) == 0) elements.push_back(e);
+  return elements;
+}
+
+/// The area-weighted centroid of these elements.
+glm::dvec3 areaCentroid(const PatchMesh& mesh, const std::vector<int>& elements) {
   glm::dvec3 c(0.0);
   double area = 0;
-  for (int e = 0; e < mesh.elementCount(); ++e)
-    if (mesh.surface(e) == surface && mesh.side(e) == 0) {
-      c += mesh.area(e) * mesh.centroid(e);
-      area += mesh.area(e);
-    }
+  for (const int e : elements) {
+    c += mesh.area(e) * mesh.centroid(e);
+    area += mesh.area(e);
+  }
   return c /= area;
 }
 
 /// The point of a surface to look from: the centroid of its element nearest to its area
 /// centroid (so it lies on the surface even when the surface is not convex).
 int centralElement(const PatchMesh& mesh, int surface) {
-  const glm::dvec3 c = areaCentroid(mesh, surface);
+  const std::vector<int> front = frontElementsOf(mesh, surface);
+  const glm::dvec3 c = areaCentroid(mesh, front);
   int best = -1;
   double bestDist = HUGE_VAL;
-  for (int e = 0; e < mesh.elementCount(); ++e)
-    if (mesh.surface(e) == surface && mesh.side(e) == 0) {
-      double d = glm::length(mesh.centroid(e) - c);
-      if (d < bestDist) bestDist = d, best = e;
-    }
+  for (const int e : front)
+    if (const double d = glm::length(mesh.centroid(e) - c); d < bestDist) bestDist = d, best = e;
   return best;
 }
 
+/// The three values of a --point or --normal option.
 glm::dvec3 vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
 /// Where the factors are seen from: a point and its unit normal, the elements that receive
@@ -73,17 +79,23 @@ std::vector<int> elementsOf(const PatchMesh& mesh, int surface) {
   return elements;
 }
 
+/// The index of the surface named `name` (--from); an error lists the names there are.
+int surfaceNamed(const Scene& scene, const std::string& name) {
+  int found = -1;
+  std::string names;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    if (scene.surfaces[s].name == name) found = int(s);
+    names += (s ? ", " : "") + scene.surfaces[s].name;
+  }
+  if (found < 0)
+    throw inputError("--from", "the name of a surface of " + scene.path + " (" + names + ")", "\"" + name + "\"");
+  return found;
+}
+
 /// The middle of the surface named `name` (--from).
 Viewpoint surfaceViewpoint(const Scene& scene, const PatchMesh& mesh, const std::string& name) {
   Viewpoint view;
-  std::string names;
-  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
-    if (scene.surfaces[s].name == name) view.fromSurface = int(s);
-    names += (s ? ", " : "") + scene.surfaces[s].name;
-  }
-  if (view.fromSurface < 0)
-    throw inputError("--from", "the name of a surface of " + scene.path + " (" + names + ")",
-                     "\"" + name + "\"");
+  view.fromSurface = surfaceNamed(scene, name);
   int e = centralElement(mesh, view.fromSurface);
   view.x = mesh.centroid(e);
   view.n = mesh.normal(e);
@@ -131,26 +143,44 @@ void addOcclusion(nlohmann::ordered_json& row, double hemicube, double fAlone, d
   }
 }
 
+/// Surface s's triangles drawn alone, and the exact factor of their lit sides from the view.
+struct SurfaceAlone {
+  HemicubeGeometry geometry;
+  double exact = 0;
+
+  SurfaceAlone(const PatchMesh& mesh, const Viewpoint& view, size_t s) {
+    for (int e = 0; e < mesh.elementCount(); ++e) {
+      if (mesh.surface(e) != int(s)) continue;
+      auto c = mesh.corners(e);
+      geometry.addTriangle(c[0], c[1], c[2]);
+      if (glm::dot(mesh.normal(e), view.x - c[0]) > 0)  // only the lit side receives
+        exact += pointPolygonFormFactor(view.x, view.n, {c[0], c[1], c[2]});
+    }
+  }
+};
+
 /// Surface s's row: its hemicube factor (`hemicube`, in the full scene) and, when drawing it
 /// alone gives the same factor (nothing occludes it), the exact factor beside it.
 nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, const Settings& settings,
                                   const Viewpoint& view, double rotation, size_t s, double hemicube) {
-  HemicubeGeometry alone;
-  double exact = 0;
-  for (int e = 0; e < mesh.elementCount(); ++e) {
-    if (mesh.surface(e) != int(s)) continue;
-    auto c = mesh.corners(e);
-    alone.addTriangle(c[0], c[1], c[2]);
-    if (glm::dot(mesh.normal(e), view.x - c[0]) > 0)  // only the lit side receives
-      exact += pointPolygonFormFactor(view.x, view.n, {c[0], c[1], c[2]});
-  }
-  const double fAlone = aloneFactor(alone, settings, scene, view, rotation);
+  const SurfaceAlone alone(mesh, view, s);
+  const double fAlone = aloneFactor(alone.geometry, settings, scene, view, rotation);
   nlohmann::ordered_json row;
   row["index"] = s;
   row["name"] = scene.surfaces[s].name;
   row["hemicube"] = hemicube;
-  addOcclusion(row, hemicube, fAlone, exact);
+  addOcclusion(row, hemicube, fAlone, alone.exact);
   return row;
+}
+
+/// The hemicube's settings and the full hemicube's totals.
+void addTotals(nlohmann::ordered_json& out, const PatchMesh& mesh, const Settings& settings, const FormFactors& ff) {
+  out["hemicube_resolution"] = settings.hemicubeResolution;
+  out["seed"] = settings.seed;
+  out["elements"] = mesh.elementCount();
+  out["sky"] = ff.sky;
+  out["back_faces"] = ff.backFaces;
+  out["sum"] = ff.sum();
 }
 
 /// What the factors are of (scene, point, settings) and the full hemicube's totals; the
@@ -162,12 +192,7 @@ nlohmann::ordered_json summary(const Scene& scene, const PatchMesh& mesh, const 
   out["point"] = {view.x.x, view.x.y, view.x.z};
   out["normal"] = {view.n.x, view.n.y, view.n.z};
   if (view.fromSurface >= 0) out["from"] = scene.surfaces[view.fromSurface].name;
-  out["hemicube_resolution"] = settings.hemicubeResolution;
-  out["seed"] = settings.seed;
-  out["elements"] = mesh.elementCount();
-  out["sky"] = ff.sky;
-  out["back_faces"] = ff.backFaces;
-  out["sum"] = ff.sum();
+  addTotals(out, mesh, settings, ff);
   out["surfaces"] = nlohmann::json::array();
   return out;
 }
@@ -179,6 +204,22 @@ std::vector<double> perSurfaceFactors(const FormFactors& ff, const PatchMesh& me
   return perSurface;
 }
 
+/// The factors from the view on the full scene's hemicube, turned by `rotation`.
+FormFactors fullFactors(const Scene& scene, const PatchMesh& mesh, const Settings& settings, const Viewpoint& view,
+                        double rotation) {
+  HemicubeGeometry all = HemicubeGeometry::fromMesh(mesh);
+  Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
+  FormFactors ff;
+  hemicube.compute(view.x, view.n, rotation, ff, view.excluded);
+  return ff;
+}
+
+/// Prints the JSON on standard output; a failed write is an error.
+void printJson(const nlohmann::ordered_json& out) {
+  std::cout << out.dump(2) << "\n";
+  if (!std::cout) throw std::runtime_error("standard output: write error");
+}
+
 void runFormFactors(const FormFactorOptions& o) {
   Scene scene = loadScene(o.scene);
   Settings settings = resolveSettings(scene, o.flags);
@@ -188,19 +229,27 @@ void runFormFactors(const FormFactorOptions& o) {
   const Viewpoint view = o.from.empty() ? pointViewpoint(o) : surfaceViewpoint(scene, mesh, o.from);
 
   // The full scene, then each surface alone: equal factors mean nothing occludes it.
-  HemicubeGeometry all = HemicubeGeometry::fromMesh(mesh);
   double rotation = hemicubeRotation(settings.seed, view.shooter, 0);
-  Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
-  FormFactors ff;
-  hemicube.compute(view.x, view.n, rotation, ff, view.excluded);
+  const FormFactors ff = fullFactors(scene, mesh, settings, view, rotation);
   const std::vector<double> perSurface = perSurfaceFactors(ff, mesh, scene.surfaces.size());
-
   nlohmann::ordered_json out = summary(scene, mesh, settings, view, ff);
   for (size_t s = 0; s < scene.surfaces.size(); ++s)
     if (int(s) != view.fromSurface)
       out["surfaces"].push_back(surfaceRow(scene, mesh, settings, view, rotation, s, perSurface[s]));
-  std::cout << out.dump(2) << "\n";
-  if (!std::cout) throw std::runtime_error("standard output: write error");
+  printJson(out);
+}
+
+/// --from, or --point with --normal: where to look from, one of the two required.
+void addViewFlags(CLI::App& sub, FormFactorOptions& o) {
+  auto from = sub.add_option("--from", o.from, "Look from the middle of this surface (by name)");
+  auto point = sub.add_option("--point", o.point, "Look from this point X,Y,Z")->delimiter(',')->expected(3);
+  auto normal = sub.add_option("--normal", o.normal, "Normal X,Y,Z at --point")->delimiter(',')->expected(3);
+  from->excludes(point)->excludes(normal);
+  point->needs(normal);
+  normal->needs(point);
+  sub.callback([from, point] {
+    if (from->count() == 0 && point->count() == 0) throw CLI::RequiredError("--from or --point");
+  });
 }
 
 }  // namespace
@@ -211,20 +260,9 @@ Command addFormFactorsCommand(CLI::App& app) {
       "formfactors", "Print, as JSON, the hemicube form factor from a point to every surface and, "
                      "where nothing occludes the surface, the exact factor and the relative difference");
   sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  auto from = sub->add_option("--from", o->from, "Look from the middle of this surface (by name)");
-  auto point = sub->add_option("--point", o->point, "Look from this point X,Y,Z")
-                   ->delimiter(',')->expected(3);
-  auto normal = sub->add_option("--normal", o->normal, "Normal X,Y,Z at --point")
-                    ->delimiter(',')->expected(3);
-  from->excludes(point)->excludes(normal);
-  point->needs(normal);
-  normal->needs(point);
+  addViewFlags(*sub, *o);
   addSolverFlags(*sub, o->flags);
   addMeshFlags(*sub, o->flags);
-  sub->callback([from, point] {
-    if (from->count() == 0 && point->count() == 0)
-      throw CLI::RequiredError("--from or --point");
-  });
   return {sub, [o] { runFormFactors(*o); }};
 }
 
