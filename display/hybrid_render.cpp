@@ -6,14 +6,6 @@
 namespace rad::viewer {
 namespace {
 
-/// The batch of a material in the hybrid model: its specular colour and shininess only.
-detail::LocalBatch specularBatch(const Material& m) {
-  detail::LocalBatch b;
-  b.specular = glm::vec4(m.specular);
-  b.shininess = float(m.shininess);
-  return b;
-}
-
 /// The unit normal of face f of the mesh ((0, 0, 1) for a degenerate face).
 glm::vec3 faceNormal(const ResultFile& mesh, size_t f) {
   const auto& face = mesh.faces[f];
@@ -47,6 +39,13 @@ void checkSurfaceIndex(const ResultFile& mesh, const Scene& scene, size_t f) {
 
 namespace internal {
 
+detail::LocalBatch specularBatch(const Material& m) {
+  detail::LocalBatch b;
+  b.specular = glm::vec4(m.specular);
+  b.shininess = float(m.shininess);
+  return b;
+}
+
 void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where) {
   if (mesh.faceSurface.size() != mesh.faces.size())
     throw inputError(mesh.path, "a result with the face property `surface` (for " + where + ")", "none");
@@ -71,36 +70,54 @@ void appendFace(HybridDrawList& list, const DrawList& base, const ResultFile& me
   }
 }
 
+/// Room for n vertices in each of the list's arrays.
+void reserveVertices(HybridDrawList& list, size_t n) {
+  list.positions.reserve(n);
+  list.normals.reserve(n);
+  list.colours.reserve(n);
+}
+
+/// The faces grouped by their scene surface, in face order.
+std::vector<std::vector<size_t>> facesBySurface(const ResultFile& mesh, const Scene& scene) {
+  return internal::groupBySurface(scene.surfaces.size(), mesh.faces.size(),
+                                  [&](size_t f) { return mesh.faceSurface[f]; });
+}
+
 }  // namespace
 
 HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, Shading shade,
                                    double exposure, bool storedColours) {
   const DrawList base = buildDrawList(mesh, shade, exposure, storedColours);
-  const auto bySurface = internal::groupBySurface(scene.surfaces.size(), mesh.faces.size(),
-                                                  [&](size_t f) { return mesh.faceSurface[f]; });
+  const auto bySurface = facesBySurface(mesh, scene);
   HybridDrawList list;
-  list.positions.reserve(base.positions.size());
-  list.normals.reserve(base.positions.size());
-  list.colours.reserve(base.positions.size());
+  reserveVertices(list, base.positions.size());
   const bool vertexNormals = shade == Shading::Smooth && !mesh.vertexNormal.empty();
-  internal::appendBatches(list, scene, bySurface, specularBatch,
+  internal::appendBatches(list, scene, bySurface, internal::specularBatch,
                           [&](size_t f) { appendFace(list, base, mesh, f, vertexNormals); });
   return list;
 }
 
 }  // namespace detail
 
+namespace {
+
+/// The hybrid model's picture of the list in view `v`, at the size of `o`.
+Image hybridPicture(const detail::HybridDrawList& list, const Scene& scene, const internal::FrameView& v,
+                    const RenderOptions& o) {
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaHybrid(list, scene, v.projection, v.view, v.width, v.height, o.shade, o.wireframe, rgb);
+  return internal::imageOf(rgb, o);
+}
+
+}  // namespace
+
 Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
   internal::checkSize(o);
   checkHybridInputs(mesh, scene, o);
-  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
-  glm::mat4 projection, view;
-  viewProjection(mesh, effectiveCamera(mesh, o), w, h, &projection, &view);
+  const internal::FrameView v = internal::frameView(mesh, effectiveCamera(mesh, o), o);
   const detail::HybridDrawList list = detail::buildHybridDrawList(
       mesh, scene, o.shade, effectiveExposure(mesh, o), internal::showsStoredColours(mesh, o));
-  std::vector<uint8_t> rgb;
-  detail::renderOsMesaHybrid(list, scene, projection, view, w, h, o.shade, o.wireframe, rgb);
-  return internal::imageOf(rgb, o);
+  return hybridPicture(list, scene, v, o);
 }
 
 }  // namespace rad::viewer

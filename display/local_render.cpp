@@ -20,29 +20,34 @@ ResultFile boundsOnly(const LocalScene& local) {
   return m;
 }
 
+/// A material's emission normalised to full brightness, E / max component (lamps show their
+/// hue at full brightness; radiosity units have no fixed display scale); black without one.
+glm::vec4 fullBrightnessEmission(const Material& m) {
+  const double peak = internal::peakEmission(m);
+  return peak > 0 ? glm::vec4(glm::vec3(m.emission / peak), 1.0f) : glm::vec4(0, 0, 0, 1);
+}
+
 /// The batch of a material: its colours, shininess, and its emission normalised to full
-/// brightness, E / max component (lamps show their hue at full brightness; radiosity units have
-/// no fixed display scale).
+/// brightness.
 detail::LocalBatch localBatch(const Material& m) {
-  detail::LocalBatch b;
+  detail::LocalBatch b = internal::specularBatch(m);
   b.ambient = glm::vec4(m.ambient);
   b.diffuse = glm::vec4(m.diffuse);
-  b.specular = glm::vec4(m.specular);
-  b.shininess = float(m.shininess);
-  const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
-  b.emission = peak > 0 ? glm::vec4(glm::vec3(m.emission / peak), 1.0f) : glm::vec4(0, 0, 0, 1);
+  b.emission = fullBrightnessEmission(m);
   return b;
+}
+
+/// Grows the local scene's bounds to hold point p.
+void includePoint(LocalScene& local, const glm::dvec3& p) {
+  local.boundsMin = glm::min(local.boundsMin, p);
+  local.boundsMax = glm::max(local.boundsMax, p);
 }
 
 /// Sets the local scene's bounds to the box of its meshed vertices.
 void fitBounds(LocalScene& local) {
   local.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
   local.boundsMax = -local.boundsMin;
-  for (auto v : local.mesh.mesh.vertices()) {
-    glm::dvec3 p = PatchMesh::toGlm(local.mesh.mesh.point(v));
-    local.boundsMin = glm::min(local.boundsMin, p);
-    local.boundsMax = glm::max(local.boundsMax, p);
-  }
+  for (auto v : local.mesh.mesh.vertices()) includePoint(local, PatchMesh::toGlm(local.mesh.mesh.point(v)));
 }
 
 /// The local model's limits on the options: OSMesa, no --exposure or --hdr.
@@ -53,18 +58,30 @@ void checkLocalOptions(const RenderOptions& o) {
   if (o.radiance) throw inputError("--mode local", "no --hdr (radiance is radiosity-only)", "--hdr");
 }
 
+/// The scene meshed with its own settings, and the bounds of the mesh.
+LocalScene meshedScene(Scene scene) {
+  LocalScene local;
+  local.mesh = buildPatchMesh(scene, resolveMeshSettings(scene, {}));
+  local.scene = std::move(scene);
+  fitBounds(local);
+  return local;
+}
+
 }  // namespace
 
 LocalScene prepareLocalScene(Scene scene) {
   if (scene.lights.empty())
     throw inputError(scene.path, "a scene with lights for --mode local", "none");
-  LocalScene local;
-  local.mesh = buildPatchMesh(scene, resolveMeshSettings(scene, {}));
-  local.scene = std::move(scene);
-  fitBounds(local);
+  LocalScene local = meshedScene(std::move(scene));
   if (local.mesh.elementCount() == 0) throw inputError(local.scene.path, "a scene with surfaces", "none");
   return local;
 }
+
+namespace internal {
+
+double peakEmission(const Material& m) { return std::max({m.emission.x, m.emission.y, m.emission.z}); }
+
+}  // namespace internal
 
 LocalScene loadLocalScene(const std::string& path) { return prepareLocalScene(loadScene(path)); }
 
@@ -84,34 +101,51 @@ void appendElement(LocalDrawList& list, const PatchMesh& pm, size_t e, Shading s
   }
 }
 
+/// The elements grouped by their scene surface, in element order.
+std::vector<std::vector<size_t>> elementsBySurface(const LocalScene& local) {
+  const PatchMesh& pm = local.mesh;
+  return internal::groupBySurface(local.scene.surfaces.size(), size_t(pm.elementCount()),
+                                  [&](size_t e) { return pm.surface(int(e)); });
+}
+
+/// Room for n vertices in each of the list's arrays.
+void reserveVertices(LocalDrawList& list, size_t n) {
+  list.positions.reserve(n);
+  list.normals.reserve(n);
+}
+
 }  // namespace
 
 LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
-  const PatchMesh& pm = local.mesh;
   // Elements grouped by surface, one material batch per surface.
-  const auto bySurface = internal::groupBySurface(local.scene.surfaces.size(), size_t(pm.elementCount()),
-                                                  [&](size_t e) { return pm.surface(int(e)); });
+  const auto bySurface = elementsBySurface(local);
   LocalDrawList list;
-  list.positions.reserve(size_t(pm.elementCount()) * 3);
-  list.normals.reserve(size_t(pm.elementCount()) * 3);
+  reserveVertices(list, size_t(local.mesh.elementCount()) * 3);
   internal::appendBatches(list, local.scene, bySurface, localBatch,
-                          [&](size_t e) { appendElement(list, pm, e, shade); });
+                          [&](size_t e) { appendElement(list, local.mesh, e, shade); });
   return list;
 }
 
 }  // namespace detail
 
+namespace {
+
+/// The local model's picture of the list in view `v`, at the size of `o`.
+Image localPicture(const detail::LocalDrawList& list, const Scene& scene, const internal::FrameView& v,
+                   const RenderOptions& o) {
+  std::vector<uint8_t> rgb;
+  detail::renderOsMesaLocal(list, scene, v.projection, v.view, v.width, v.height, o.shade, o.wireframe, rgb);
+  return internal::imageOf(rgb, o);
+}
+
+}  // namespace
+
 Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   internal::checkSize(o);
   checkLocalOptions(o);
-  const int w = o.width * o.ssaa, h = o.height * o.ssaa;
-  glm::mat4 projection, view;
   const ResultFile bounds = boundsOnly(local);
-  viewProjection(bounds, effectiveCamera(bounds, o), w, h, &projection, &view);
-  const detail::LocalDrawList list = detail::buildLocalDrawList(local, o.shade);
-  std::vector<uint8_t> rgb;
-  detail::renderOsMesaLocal(list, local.scene, projection, view, w, h, o.shade, o.wireframe, rgb);
-  return internal::imageOf(rgb, o);
+  const internal::FrameView v = internal::frameView(bounds, effectiveCamera(bounds, o), o);
+  return localPicture(detail::buildLocalDrawList(local, o.shade), local.scene, v, o);
 }
 
 }  // namespace rad::viewer

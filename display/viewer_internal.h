@@ -51,6 +51,12 @@ void checkSize(const RenderOptions& options);
 /// InputError.
 void checkFaceSurfaces(const ResultFile& mesh, const Scene& scene, const std::string& where);
 
+/// The batch of a material that carries only its specular colour and shininess.
+detail::LocalBatch specularBatch(const Material& m);
+
+/// The largest component of the material's emission (0 for a material that does not emit).
+double peakEmission(const Material& m);
+
 /// The items 0..count-1 grouped by their scene surface (surfaceOf(item)), in item order.
 template <class SurfaceOf>
 std::vector<std::vector<size_t>> groupBySurface(size_t surfaceCount, size_t count, SurfaceOf surfaceOf) {
