@@ -50,6 +50,21 @@ void locateOrRefuse(const pathtrace::TraceScene& scene, pathtrace::SurfacePoint&
                      "none there");
 }
 
+/// Whether the line holds anything but blanks.
+bool hasWords(const std::string& line) {
+  std::istringstream words(line);
+  std::string first;
+  return bool(words >> first);
+}
+
+/// The point of one line (`where` names it in errors), on its surface.
+pathtrace::SurfacePoint pointOfLine(const pathtrace::TraceScene& scene, const std::string& line, const std::string& where) {
+  std::istringstream words(line);
+  pathtrace::SurfacePoint p = parsePoint(words, line, where);
+  locateOrRefuse(scene, p, where);
+  return p;
+}
+
 /// Reads `x y z nx ny nz [tag]` lines ('#' starts a comment) and finds each point's surface.
 std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const pathtrace::TraceScene& scene) {
   std::istringstream in(readInputFile(path, "a readable points file"));
@@ -57,19 +72,13 @@ std::vector<pathtrace::SurfacePoint> readPoints(const std::string& path, const p
   std::string line;
   for (int lineNo = 1; std::getline(in, line); ++lineNo) {
     line = line.substr(0, line.find('#'));
-    std::istringstream words(line);
-    std::string first;
-    if (!(words >> first)) continue;
-    const std::string where = path + ": line " + std::to_string(lineNo);
-    words.seekg(0);
-    pathtrace::SurfacePoint p = parsePoint(words, line, where);
-    locateOrRefuse(scene, p, where);
-    out.push_back(p);
+    if (hasWords(line)) out.push_back(pointOfLine(scene, line, path + ": line " + std::to_string(lineNo)));
   }
   if (out.empty()) throw inputError(path, "at least one point", "none");
   return out;
 }
 
+/// A progress bar of the share done, redrawn in place on stderr.
 void showProgress(double share) {
   const int width = 40, filled = int(share * width);
   std::fprintf(stderr, "\rradiosity reference [%s%s] %3.0f%%", std::string(size_t(filled), '#').c_str(),
@@ -85,6 +94,7 @@ std::vector<pathtrace::SurfacePoint> pointsFor(const ReferenceOptions& o, const 
   return points;
 }
 
+/// The path tracer's options from the command's.
 pathtrace::TraceOptions traceOptions(const ReferenceOptions& o) {
   pathtrace::TraceOptions options;
   options.seed = o.seed;
@@ -99,6 +109,13 @@ pathtrace::TraceOptions traceOptions(const ReferenceOptions& o) {
 /// stopped at the cap before reaching the relative error.
 struct PathCounts {
   long capped = 0, fewest = 0, most = 0;
+
+  /// Counts one point's estimate; `capping`: it stopped at maxPaths if it has that many.
+  void add(const pathtrace::PointEstimate& e, bool capping, long maxPaths) {
+    capped += capping && e.paths >= maxPaths;
+    fewest = std::min(fewest, e.paths);
+    most = std::max(most, e.paths);
+  }
 };
 
 /// A point of the reference file: where, its surface's name, its tag and the estimate.
@@ -113,23 +130,26 @@ ReferenceFile referencePoints(const Scene& scene, const std::vector<pathtrace::S
   ReferenceFile file;
   counts = {0, estimates[0].paths, 0};
   for (size_t i = 0; i < points.size(); ++i) {
-    const auto& e = estimates[i];
-    file.points.push_back(referencePoint(scene, points[i], e));
-    counts.capped += capping && e.paths >= maxPaths;
-    counts.fewest = std::min(counts.fewest, e.paths);
-    counts.most = std::max(counts.most, e.paths);
+    file.points.push_back(referencePoint(scene, points[i], estimates[i]));
+    counts.add(estimates[i], capping, maxPaths);
   }
   return file;
+}
+
+/// printf's text of the format and arguments (at most 255 characters).
+template <class... Args>
+std::string formatted(const char* format, Args... args) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, args...);
+  return buf;
 }
 
 /// The header's paths-per-point line: the fixed count, or the relative error, bounds and capped points.
 std::string pathsPerPointLine(const ReferenceOptions& o, const pathtrace::TraceOptions& options,
                               const PathCounts& counts) {
-  char buf[256];
-  if (o.paths > 0) std::snprintf(buf, sizeof buf, "paths per point: %ld", o.paths);
-  else std::snprintf(buf, sizeof buf, "paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
-                     o.relativeError, options.minPaths, options.maxPaths, counts.capped);
-  return buf;
+  if (o.paths > 0) return formatted("paths per point: %ld", o.paths);
+  return formatted("paths per point: until SE/B < %g in every channel (%ld to %ld; %ld points stopped at the cap)",
+                   o.relativeError, options.minPaths, options.maxPaths, counts.capped);
 }
 
 /// The header's points line: how many, and placed how or read from where.
@@ -142,19 +162,14 @@ std::string pointsLine(const ReferenceOptions& o, size_t points) {
 std::vector<std::string> referenceHeader(const ReferenceOptions& o, const pathtrace::TraceOptions& options,
                                          const Scene& scene, size_t points, const PathCounts& counts,
                                          long traced, double seconds) {
-  std::vector<std::string> header;
-  char buf[256];
-  header.push_back("radiosity reference: path tracing (next-event estimation and cosine-weighted bounces "
-                   "combined by the power heuristic, Russian roulette), independent of the hemicube solver");
-  header.push_back("scene: " + scene.path);
-  header.push_back("seed: " + std::to_string(o.seed));
-  header.push_back(pointsLine(o, points));
-  header.push_back(pathsPerPointLine(o, options, counts));
-  std::snprintf(buf, sizeof buf, "paths: %ld (%ld to %ld per point)", traced, counts.fewest, counts.most);
-  header.push_back(buf);
-  std::snprintf(buf, sizeof buf, "seconds: %.3f (%.3g paths per second)", seconds, double(traced) / seconds);
-  header.push_back(buf);
-  return header;
+  return {"radiosity reference: path tracing (next-event estimation and cosine-weighted bounces "
+          "combined by the power heuristic, Russian roulette), independent of the hemicube solver",
+          "scene: " + scene.path,
+          "seed: " + std::to_string(o.seed),
+          pointsLine(o, points),
+          pathsPerPointLine(o, options, counts),
+          formatted("paths: %ld (%ld to %ld per point)", traced, counts.fewest, counts.most),
+          formatted("seconds: %.3f (%.3g paths per second)", seconds, double(traced) / seconds)};
 }
 
 /// The closing line: points, paths, time and rate, and the file written.
@@ -163,25 +178,64 @@ void printWritten(size_t points, long paths, double seconds, const std::string& 
                seconds, double(paths) / seconds, output.c_str());
 }
 
+/// The estimates at the points, with a progress bar when stderr is a terminal; `seconds`:
+/// the time they took.
+std::vector<pathtrace::PointEstimate> traceTimed(const pathtrace::PathTracer& tracer,
+                                                 const std::vector<pathtrace::SurfacePoint>& points,
+                                                 pathtrace::TraceOptions options, double& seconds) {
+  const bool terminal = isatty(STDERR_FILENO);
+  if (terminal) options.progress = showProgress;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<pathtrace::PointEstimate> estimates = tracer.estimate(points, options);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (terminal) std::fprintf(stderr, "\n");
+  return estimates;
+}
+
+/// Writes the reference file: the points with their estimates, under the header.
+void writeReference(const ReferenceOptions& o, const pathtrace::TraceOptions& options, const Scene& scene,
+                    const std::vector<pathtrace::SurfacePoint>& points,
+                    const std::vector<pathtrace::PointEstimate>& estimates, long traced, double seconds) {
+  PathCounts counts;
+  ReferenceFile file = referencePoints(scene, points, estimates, o.paths <= 0, options.maxPaths, counts);
+  file.header = referenceHeader(o, options, scene, points.size(), counts, traced, seconds);
+  writeReferenceFile(o.output, file);
+}
+
 void runReference(const ReferenceOptions& o) {
   checkOutputPath(o.output);
   Scene scene = loadSceneToSolve(o.scene);
   printWarnings(scene.warnings);
   const pathtrace::TraceScene traced(scene);
   const std::vector<pathtrace::SurfacePoint> points = pointsFor(o, scene, traced);
-  pathtrace::TraceOptions options = traceOptions(o);
-  const bool terminal = isatty(STDERR_FILENO);
-  if (terminal) options.progress = showProgress;
-  const auto t0 = std::chrono::steady_clock::now();
+  const pathtrace::TraceOptions options = traceOptions(o);
   const pathtrace::PathTracer tracer(traced);
-  const std::vector<pathtrace::PointEstimate> estimates = tracer.estimate(points, options);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (terminal) std::fprintf(stderr, "\n");
-  PathCounts counts;
-  ReferenceFile file = referencePoints(scene, points, estimates, o.paths <= 0, options.maxPaths, counts);
-  file.header = referenceHeader(o, options, scene, points.size(), counts, tracer.pathsTraced(), seconds);
-  writeReferenceFile(o.output, file);
+  double seconds = 0;
+  const std::vector<pathtrace::PointEstimate> estimates = traceTimed(tracer, points, options, seconds);
+  writeReference(o, options, scene, points, estimates, tracer.pathsTraced(), seconds);
   printWritten(points.size(), tracer.pathsTraced(), seconds, o.output);
+}
+
+/// --points or --count: the points to measure.
+void addPointFlags(CLI::App& sub, ReferenceOptions& o) {
+  auto* points = sub.add_option("--points", o.points, "Points to measure: lines 'x y z nx ny nz [tag]'");
+  sub.add_option("--count", o.count, "Points to place when --points is not given (default 300)")
+      ->check(CLI::Range(1, 1'000'000))
+      ->excludes(points);
+}
+
+/// --paths or --relative-error with its bounds: how many paths each point takes.
+void addPathFlags(CLI::App& sub, ReferenceOptions& o) {
+  auto* paths = sub.add_option("--paths", o.paths, "Exactly this many paths per point")->check(CLI::Range(2L, 1L << 40));
+  sub.add_option("--relative-error", o.relativeError,
+                 "Trace each point until its standard error is below this share of B in every channel "
+                 "(default 0.01)")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->excludes(paths);
+  sub.add_option("--min-paths", o.minPaths, "With --relative-error, at least this many paths per point (default 8192)")
+      ->check(CLI::Range(2L, 1L << 40));
+  sub.add_option("--max-paths", o.maxPaths, "With --relative-error, at most this many paths per point (default 2e7)")
+      ->check(CLI::Range(2L, 1L << 40));
 }
 
 }  // namespace
@@ -192,20 +246,8 @@ Command addReferenceCommand(CLI::App& app) {
       "reference", "Radiosity at surface points by Monte Carlo path tracing, independent of the "
                    "hemicube solver, with standard errors (CSV): the truth to measure solves against");
   addSceneAndOutput(*sub, o->scene, o->output, "Reference file (CSV)");
-  auto* points = sub->add_option("--points", o->points, "Points to measure: lines 'x y z nx ny nz [tag]'");
-  sub->add_option("--count", o->count, "Points to place when --points is not given (default 300)")
-      ->check(CLI::Range(1, 1'000'000))
-      ->excludes(points);
-  auto* paths = sub->add_option("--paths", o->paths, "Exactly this many paths per point")->check(CLI::Range(2L, 1L << 40));
-  sub->add_option("--relative-error", o->relativeError,
-                  "Trace each point until its standard error is below this share of B in every channel "
-                  "(default 0.01)")
-      ->check(CLI::Range(1e-6, 1.0))
-      ->excludes(paths);
-  sub->add_option("--min-paths", o->minPaths, "With --relative-error, at least this many paths per point (default 8192)")
-      ->check(CLI::Range(2L, 1L << 40));
-  sub->add_option("--max-paths", o->maxPaths, "With --relative-error, at most this many paths per point (default 2e7)")
-      ->check(CLI::Range(2L, 1L << 40));
+  addPointFlags(*sub, *o);
+  addPathFlags(*sub, *o);
   sub->add_option("--seed", o->seed, "Seed of the random streams (default 1)");
   return {sub, [o] { runReference(*o); }};
 }
