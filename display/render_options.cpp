@@ -24,14 +24,19 @@ InputError badCamera(const std::string& why) {
   return inputError("--camera", "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=F (any subset)", why);
 }
 
+/// Throws unless `key` is one of the camera's and not given before.
+void checkCameraKey(const std::string& key, const CameraValues& values) {
+  if (key != "eye" && key != "target" && key != "up" && key != "fov")
+    throw badCamera("the unknown key \"" + key + "\"");
+  if (values.count(key)) throw badCamera("\"" + key + "\" twice");
+}
+
 /// The key a "key=number" token starts (checked: known, given once), or "" for a plain number.
 std::string startKey(const std::string& token, CameraValues& values) {
   const size_t eq = token.find('=');
   if (eq == std::string::npos) return "";
   const std::string key = token.substr(0, eq);
-  if (key != "eye" && key != "target" && key != "up" && key != "fov")
-    throw badCamera("the unknown key \"" + key + "\"");
-  if (values.count(key)) throw badCamera("\"" + key + "\" twice");
+  checkCameraKey(key, values);
   values[key];
   return key;
 }
@@ -45,20 +50,25 @@ double cameraNumber(const std::string& number, const std::string& key) {
   return v;
 }
 
+/// Reads one comma-separated token of the text into `values`: a "key=number" starts that key,
+/// a plain number belongs to `current`, the last key named.
+void readCameraToken(const std::string& text, const std::string& token, std::string& current,
+                     CameraValues& values) {
+  std::string key = startKey(token, values), number = token;
+  if (!key.empty()) {
+    current = key;
+    number = token.substr(token.find('=') + 1);
+  }
+  if (current.empty()) throw badCamera("'" + text + "' (no key before \"" + token + "\")");
+  values[current].push_back(cameraNumber(number, current));
+}
+
 /// Splits the text at commas into numbers, each belonging to the last key named.
 CameraValues readCameraValues(const std::string& text) {
   CameraValues values;
   std::string current, token;
   std::stringstream s(text);
-  while (std::getline(s, token, ',')) {
-    std::string key = startKey(token, values), number = token;
-    if (!key.empty()) {
-      current = key;
-      number = token.substr(token.find('=') + 1);
-    }
-    if (current.empty()) throw badCamera("'" + text + "' (no key before \"" + token + "\")");
-    values[current].push_back(cameraNumber(number, current));
-  }
+  while (std::getline(s, token, ',')) readCameraToken(text, token, current, values);
   if (values.empty()) throw badCamera("'" + text + "'");
   return values;
 }
@@ -76,14 +86,16 @@ glm::dvec3* cameraVector(Camera& c, const std::string& key) {
   return key == "eye" ? &c.eye : key == "target" ? &c.target : key == "up" ? &c.up : nullptr;
 }
 
+/// Sets one key's numbers in `c`: three for eye, target or up, one for fov.
+void applyCameraValue(const std::string& key, const std::vector<double>& v, Camera& c) {
+  checkValueCount(key, v);
+  if (key == "fov") c.fovYDeg = v[0];
+  if (glm::dvec3* vec = cameraVector(c, key)) *vec = glm::dvec3(v[0], v[1], v[2]);
+}
+
 /// Sets the keys' values in `c`: three numbers for eye, target and up, one for fov.
 void applyCameraValues(const CameraValues& values, Camera& c) {
-  for (const auto& [key, v] : values) {
-    checkValueCount(key, v);
-    if (key == "fov") c.fovYDeg = v[0];
-    glm::dvec3* vec = cameraVector(c, key);
-    if (vec) *vec = glm::dvec3(v[0], v[1], v[2]);
-  }
+  for (const auto& [key, v] : values) applyCameraValue(key, v, c);
 }
 
 /// Corner `i` (0..7, bits x, y, z: high or low) of the box from lo to hi.
