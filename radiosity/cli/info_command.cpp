@@ -16,21 +16,26 @@ struct InfoOptions {
   SolverBlock flags;
 };
 
+/// A colour as three numbers of four significant digits.
 std::string rgb(const glm::dvec3& c) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "%.4g %.4g %.4g", c.x, c.y, c.z);
   return buf;
 }
 
+/// One row of the materials table.
+void printMaterialRow(const Material& m) {
+  std::printf("  %-16s reflectance %-22s emission %-22s%s%s\n", m.name.c_str(), rgb(m.reflectance).c_str(),
+              rgb(m.emission).c_str(), m.preset.empty() ? "" : " preset ", m.preset.c_str());
+}
+
 /// The materials table.
 void printMaterials(const Scene& scene) {
   std::printf("\nmaterials\n");
-  for (const auto& m : scene.materials)
-    std::printf("  %-16s reflectance %-22s emission %-22s%s%s\n", m.name.c_str(),
-                rgb(m.reflectance).c_str(), rgb(m.emission).c_str(),
-                m.preset.empty() ? "" : " preset ", m.preset.c_str());
+  for (const auto& m : scene.materials) printMaterialRow(m);
 }
 
+/// The scene's file, size and meshing settings, then its materials.
 void printScene(const Scene& scene, const Settings& settings) {
   std::printf("scene       %s%s%s\n", scene.path.c_str(), scene.units.empty() ? "" : ", units ",
               scene.units.c_str());
@@ -49,25 +54,32 @@ void printTotals(const Scene& scene, const PatchMesh& mesh, double total, double
 }
 
 /// One row of the surface table.
-void printSurfaceRow(size_t s, const Surface& surface, const Material& material, const SurfaceSummary& summary) {
+void printSurfaceRow(const Scene& scene, const PatchMesh& mesh, size_t s) {
+  const Surface& surface = scene.surfaces[s];
+  const Material& material = scene.materials[surface.material];
+  const SurfaceSummary& summary = mesh.surfaces[s];
   std::printf("  %3zu %-20s %-12s %14.6g %6d %8d %9d%s\n", s, surface.name.c_str(),
               material.name.c_str(), summary.area, surface.twoSided ? 2 : 1, summary.patches,
               summary.elements, material.emits() ? "  emitter" : "");
+}
+
+/// The area of every surface side in all, and of the emitting surfaces.
+std::pair<double, double> surfaceAreas(const Scene& scene, const PatchMesh& mesh) {
+  double total = 0, emitting = 0;
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    const Surface& surface = scene.surfaces[s];
+    total += mesh.surfaces[s].area * (surface.twoSided ? 2 : 1);
+    if (scene.materials[surface.material].emits()) emitting += mesh.surfaces[s].area;
+  }
+  return {total, emitting};
 }
 
 /// The surface table, then the totals.
 void printSurfaces(const Scene& scene, const PatchMesh& mesh) {
   std::printf("\nsurfaces\n  %3s %-20s %-12s %14s %6s %8s %9s\n", "#", "name", "material", "area",
               "sides", "patches", "elements");
-  double total = 0, emitting = 0;
-  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
-    const auto& surface = scene.surfaces[s];
-    const auto& summary = mesh.surfaces[s];
-    const auto& material = scene.materials[surface.material];
-    printSurfaceRow(s, surface, material, summary);
-    total += summary.area * (surface.twoSided ? 2 : 1);
-    if (material.emits()) emitting += summary.area;
-  }
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) printSurfaceRow(scene, mesh, s);
+  const auto [total, emitting] = surfaceAreas(scene, mesh);
   printTotals(scene, mesh, total, emitting);
 }
 
@@ -103,31 +115,46 @@ std::string directLine(const DirectLight* direct) {
                 : "from the hemicubes";
 }
 
+/// What adaptive refinement did.
+void printAdaptive(const Settings& settings, const AdaptiveStats& adaptive) {
+  std::printf("adaptive    %d -> %d elements in %d rounds (min element edge %.6g, contrast %.3g), "
+              "%.3f s\n", adaptive.elementsBefore, adaptive.elementsAfter, adaptive.rounds,
+              settings.minElementEdge, settings.contrast, adaptive.seconds);
+}
+
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
 void printMeshing(const MeshedScene& meshed, double seconds) {
   const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",
               mesh.stats.minAngleDeg, mesh.stats.maxEdge, mesh.stats.maxPatchDiameter);
-  if (settings.adaptive)
-    std::printf("adaptive    %d -> %d elements in %d rounds (min element edge %.6g, contrast %.3g), "
-                "%.3f s\n", adaptive.elementsBefore, adaptive.elementsAfter, adaptive.rounds,
-                settings.minElementEdge, settings.contrast, adaptive.seconds);
+  if (settings.adaptive) printAdaptive(settings, adaptive);
   std::printf("direct      %s\n", directLine(direct.get()).c_str());
   std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds, mesh.stats.rounds);
 }
 
-void runInfo(const InfoOptions& o) {
-  Scene loaded = loadScene(o.scene);
+/// The scene meshed by the flags; `seconds`: the time meshing took.
+MeshedScene timedMesh(Scene loaded, const SolverBlock& flags, double& seconds) {
   auto start = std::chrono::steady_clock::now();
-  const MeshedScene meshed = meshWithFlags(std::move(loaded), o.flags, false);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  MeshedScene meshed = meshWithFlags(std::move(loaded), flags, false);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return meshed;
+}
+
+/// Flushes standard output; a failed write is an error.
+void flushOutput() {
+  std::fflush(stdout);
+  if (std::ferror(stdout)) throw std::runtime_error("standard output: write error");
+}
+
+void runInfo(const InfoOptions& o) {
+  double seconds = 0;
+  const MeshedScene meshed = timedMesh(loadScene(o.scene), o.flags, seconds);
   printScene(meshed.scene, meshed.settings);
   printSurfaces(meshed.scene, meshed.mesh);
   printContacts(meshed.scene, meshed.mesh);
   printMeshing(meshed, seconds);
-  std::fflush(stdout);
-  if (std::ferror(stdout)) throw std::runtime_error("standard output: write error");
+  flushOutput();
 }
 
 }  // namespace

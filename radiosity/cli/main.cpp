@@ -4,6 +4,7 @@
 #include <iostream>
 #include <regex>
 #include <new>
+#include <optional>
 #include <vector>
 
 #include "mesh/error.h"
@@ -29,6 +30,17 @@ void addPositive(CLI::App& app, const std::string& name, T& slot, const std::str
   app.add_option(name, slot, help)->check(CLI::PositiveNumber);
 }
 
+/// An option whose value must lie in [lo, hi].
+template <class T, class Bound>
+void addInRange(CLI::App& app, const std::string& name, T& slot, Bound lo, Bound hi, const std::string& help) {
+  app.add_option(name, slot, help)->check(CLI::Range(lo, hi));
+}
+
+/// A hemicube resolution's option: an even number of pixels across the top face.
+void addResolution(CLI::App& app, const std::string& name, std::optional<int>& slot, const std::string& help) {
+  app.add_option(name, slot, help)->check(CLI::Range(2, 8192))->check(mustBeEven);
+}
+
 /// Element and patch sizes, contacts and the element cap.
 void addSizeFlags(CLI::App& app, SolverBlock& flags) {
   addPositive(app, "--max-element-edge", flags.maxElementEdge,
@@ -38,10 +50,9 @@ void addSizeFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--cut-contacts", flags.cutContacts,
                  "Cut surfaces along the lines where others touch them and leave out what those "
                  "enclose, true or false (solver.cut_contacts; default true)");
-  app.add_option("--max-elements", flags.maxElements,
-                 "Refuse meshes of more elements than this, estimated before meshing; adaptive "
-                 "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)")
-      ->check(CLI::Range(1L, 1'000'000'000'000L));
+  addInRange(app, "--max-elements", flags.maxElements, 1L, 1'000'000'000'000L,
+             "Refuse meshes of more elements than this, estimated before meshing; adaptive "
+             "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)");
 }
 
 /// Adaptive refinement and the direct light at the vertices.
@@ -52,10 +63,9 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
   addPositive(app, "--min-element-edge", flags.minElementEdge,
               "Adaptive refinement stops at elements this small, scene units (solver.min_element_edge; "
               "default: element edge / 4)");
-  app.add_option("--contrast", flags.contrast,
-                 "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
-                 "across an element (solver.contrast; default 0.02)")
-      ->check(CLI::Range(1e-6, 1.0));
+  addInRange(app, "--contrast", flags.contrast, 1e-6, 1.0,
+             "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
+             "across an element (solver.contrast; default 0.02)");
   app.add_option("--vertex-direct", flags.vertexDirect,
                  "Show direct light computed at the vertices by rays to points on the emitters, "
                  "true or false (solver.vertex_direct; default true)");
@@ -63,35 +73,27 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
 
 /// The hemicube resolutions and the seed of their rotations.
 void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
-  app.add_option("--hemicube", flags.hemicubeResolution,
-                 "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
-                 "default 128)")
-      ->check(CLI::Range(2, 8192))
-      ->check(mustBeEven);
-  app.add_option("--emitter-hemicube", flags.emitterHemicubeResolution,
-                 "Hemicube resolution for emitting patches, even "
-                 "(solver.emitter_hemicube_resolution; default 256)")
-      ->check(CLI::Range(2, 8192))
-      ->check(mustBeEven);
+  addResolution(app, "--hemicube", flags.hemicubeResolution,
+                "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
+                "default 128)");
+  addResolution(app, "--emitter-hemicube", flags.emitterHemicubeResolution,
+                "Hemicube resolution for emitting patches, even "
+                "(solver.emitter_hemicube_resolution; default 256)");
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
 }
 
 /// Shooting points and the factor cache.
 void addShootingFlags(CLI::App& app, SolverBlock& flags) {
-  app.add_option("--emitter-samples", flags.emitterSamples,
-                 "Shooting points on each emitting patch (solver.emitter_samples; default 64)")
-      ->check(CLI::Range(1, 65536));
-  app.add_option("--shooter-samples", flags.shooterSamples,
-                 "Shooting points on each other patch, at least (solver.shooter_samples; default 1)")
-      ->check(CLI::Range(1, 65536));
-  app.add_option("--proximity-samples", flags.proximitySamples,
-                 "More shooting points near other surfaces: k·(D/d)² for a patch of diameter D "
-                 "whose nearest facing element lies d away (solver.proximity_samples; default 0.7)")
-      ->check(CLI::Range(0.0, 65536.0));
-  app.add_option("--factor-cache-mb", flags.factorCacheMb,
-                 "Memory for reusing a patch's form factors when it shoots again, MiB "
-                 "(solver.factor_cache_mb; default 256; 0: recompute)")
-      ->check(CLI::Range(0.0, 1e9));
+  addInRange(app, "--emitter-samples", flags.emitterSamples, 1, 65536,
+             "Shooting points on each emitting patch (solver.emitter_samples; default 64)");
+  addInRange(app, "--shooter-samples", flags.shooterSamples, 1, 65536,
+             "Shooting points on each other patch, at least (solver.shooter_samples; default 1)");
+  addInRange(app, "--proximity-samples", flags.proximitySamples, 0.0, 65536.0,
+             "More shooting points near other surfaces: k·(D/d)² for a patch of diameter D "
+             "whose nearest facing element lies d away (solver.proximity_samples; default 0.7)");
+  addInRange(app, "--factor-cache-mb", flags.factorCacheMb, 0.0, 1e9,
+             "Memory for reusing a patch's form factors when it shoots again, MiB "
+             "(solver.factor_cache_mb; default 256; 0: recompute)");
 }
 
 }  // namespace
@@ -162,21 +164,42 @@ std::vector<rad::cli::Command> addCommands(CLI::App& app) {
           rad::cli::addConvergenceCommand(app), rad::cli::addReferenceCommand(app)};
 }
 
+/// What a run that ran out of memory says.
+constexpr const char* kOutOfMemory =
+    "out of memory: the scene's mesh and factors need more than this machine has (raise "
+    "--max-element-edge or lower --max-elements and --factor-cache-mb)";
+
+/// Runs the command the user chose.
+void runParsed(const std::vector<rad::cli::Command>& commands) {
+  for (const auto& command : commands)
+    if (command.app->parsed()) command.run();
+}
+
 /// Runs the parsed command; errors are said on stderr with exit status 1.
 int runReportingErrors(const std::vector<rad::cli::Command>& commands) {
   try {
-    for (const auto& command : commands)
-      if (command.app->parsed()) command.run();
+    runParsed(commands);
     return 0;
   } catch (const rad::SettingError& e) {
     printError(rad::cli::withFlags(e.what()));
   } catch (const std::bad_alloc&) {
-    printError("out of memory: the scene's mesh and factors need more than this machine has (raise "
-               "--max-element-edge or lower --max-elements and --factor-cache-mb)");
+    printError(kOutOfMemory);
   } catch (const std::exception& e) {  // InputError and the rest
     printError(e.what());
   }
   return 1;
+}
+
+/// Parses the command line; the exit status when that ends the run (help: 0, a usage
+/// error: 2), none when a command is to run.
+std::optional<int> parseOrExit(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, or the usage error
+    return code == 0 ? 0 : 2;
+  }
 }
 
 }  // namespace
@@ -185,11 +208,6 @@ int main(int argc, char** argv) {
   CLI::App app{"Progressive radiosity: solve, inspect and mesh scenes of diffuse surfaces"};
   app.require_subcommand(1);
   const std::vector<rad::cli::Command> commands = addCommands(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help, or the usage error
-    return code == 0 ? 0 : 2;
-  }
+  if (const std::optional<int> code = parseOrExit(app, argc, argv)) return *code;
   return runReportingErrors(commands);
 }
