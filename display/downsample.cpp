@@ -20,23 +20,17 @@ double srgbDecode(double want) {
   return 0.5 * (lo + hi);
 }
 
-/// Linear value of each sRGB display byte: the inverse of mesh/color.h's srgbEncode.
-const std::array<double, 256>& srgbDecodeTable() {
-  static const std::array<double, 256> table = [] {
-    std::array<double, 256> t{};
-    for (int b = 0; b < 256; ++b) t[b] = srgbDecode(b / 255.0);
-    return t;
-  }();
-  return table;
+/// srgbDecode of every display byte.
+std::array<double, 256> makeSrgbDecodeTable() {
+  std::array<double, 256> t{};
+  for (int b = 0; b < 256; ++b) t[b] = srgbDecode(b / 255.0);
+  return t;
 }
 
-/// The picture flipped to top row first, unfiltered (k = 1: no round trip through linear light).
-template <class T>
-std::vector<T> flipped(const std::vector<T>& big, int width, int height) {
-  std::vector<T> out(size_t(width) * height * 3);
-  for (int y = 0; y < height; ++y)
-    std::copy_n(&big[size_t(height - 1 - y) * width * 3], width * 3, &out[size_t(y) * width * 3]);
-  return out;
+/// Linear value of each sRGB display byte: the inverse of mesh/color.h's srgbEncode.
+const std::array<double, 256>& srgbDecodeTable() {
+  static const std::array<double, 256> table = makeSrgbDecodeTable();
+  return table;
 }
 
 /// The sum in linear light of channel c over the k x k block of pixel (x, y) of a picture
@@ -54,7 +48,7 @@ double blockSum(const std::vector<T>& big, int bigWidth, int x, int y, int c, in
 template <class T, class Decode, class Encode>
 std::vector<T> boxFilter(const std::vector<T>& big, int width, int height, int k, Decode decode,
                          Encode encode) {
-  if (k == 1) return flipped(big, width, height);
+  if (k == 1) return topRowFirst(big, width, height, 3);  // no round trip through linear light
   std::vector<T> out(size_t(width) * height * 3);
   const int bigWidth = width * k;
   const double norm = 1.0 / (k * k);
@@ -69,12 +63,7 @@ std::vector<T> boxFilter(const std::vector<T>& big, int width, int height, int k
 
 uint8_t toByte(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
-std::vector<uint8_t> targetBytes(const raster::Target& target) {
-  std::vector<uint8_t> rgb(target.color.size() * 3);
-  for (size_t p = 0; p < target.color.size(); ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = toByte(target.color[p][c]);
-  return rgb;
-}
+std::vector<uint8_t> targetBytes(const raster::Target& target) { return targetRgb<uint8_t>(target, toByte); }
 
 std::vector<uint8_t> downsampleBytes(const std::vector<uint8_t>& big, int width, int height, int k) {
   const auto& table = srgbDecodeTable();

@@ -37,6 +37,12 @@ Image imageFromStb(stbi_uc* data, int w, int h) {
   return image;
 }
 
+/// stb's reason for its last failure, or "an unreadable file" when it gives none.
+std::string stbFailure() {
+  const char* why = stbi_failure_reason();
+  return why ? why : "an unreadable file";
+}
+
 }  // namespace
 
 void writePng(const std::string& path, const Image& image) {
@@ -49,10 +55,7 @@ void writePng(const std::string& path, const Image& image) {
 Image readPng(const std::string& path) {
   int w = 0, h = 0, channels = 0;
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
-  if (!data) {
-    const char* why = stbi_failure_reason();
-    throw inputError(path, "a readable PNG image", why ? why : "an unreadable file");
-  }
+  if (!data) throw inputError(path, "a readable PNG image", stbFailure());
   return imageFromStb(data, w, h);
 }
 

@@ -73,7 +73,8 @@ void appendFaceCorners(ColouredCorners& corners, const std::vector<glm::vec4>& c
 }
 
 /// Every face de-indexed, each in its surface's colour.
-ColouredCorners surfaceCorners(const std::vector<glm::vec4>& clip, const ResultFile& mesh, const Scene& scene) {
+ColouredCorners surfaceCorners(const std::vector<glm::vec4>& clip, const ResultFile& mesh,
+                               const Scene& scene) {
   ColouredCorners corners;
   corners.clip.reserve(mesh.faces.size() * 3);
   corners.colours.reserve(mesh.faces.size() * 3);

@@ -83,10 +83,7 @@ std::vector<uint32_t> frontTriangles(const std::vector<glm::vec4>& clip) {
 
 /// The RGB floats of the target's colour buffer.
 std::vector<float> colourFloats(const raster::Target& target) {
-  std::vector<float> rgb(target.color.size() * 3);
-  for (size_t p = 0; p < target.color.size(); ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = target.color[p][c];
-  return rgb;
+  return internal::targetRgb<float>(target, [](float v) { return v; });
 }
 
 /// Draws the de-indexed triangles (3 clip-space vertices each) in their per-vertex colours.
@@ -136,15 +133,6 @@ void renderSoftware(const detail::DrawList& list, const internal::FrameView& v, 
   if (o.wireframe) drawWireframeOver(target, clip, o.cullBack);
   rgb = internal::targetBytes(target);
   if (radiance) *radiance = softwareRadiance(target, state, clip, list);
-}
-
-/// The item buffer (bottom row first) in reading order, top row first.
-std::vector<uint32_t> topRowFirst(const raster::Target& target) {
-  std::vector<uint32_t> out(target.item.size());
-  const int width = target.width, height = target.height;
-  for (int y = 0; y < height; ++y)
-    std::copy_n(&target.item[size_t(height - 1 - y) * width], width, &out[size_t(y) * width]);
-  return out;
 }
 
 /// Draws the list in view `v` on the backend `o` names: the display bytes into rgb and, when
@@ -254,7 +242,7 @@ std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions&
   static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
   raster::drawTriangles(target, cullingState(o.cullBack), clip.data(), clip.size(),
                         reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
-  return topRowFirst(target);
+  return internal::topRowFirst(target.item, target.width, target.height, 1);
 }
 
 }  // namespace rad::viewer

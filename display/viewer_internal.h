@@ -1,6 +1,7 @@
 #pragma once
 // What the viewer's files share and nobody else needs: supersampling, checks of the render
 // options, and the per-surface batches of the lit models. Not a public header.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,6 +18,26 @@ uint8_t toByte(float v);
 
 /// The raster target's colours as bytes (RGB, the target's rows: bottom row first).
 std::vector<uint8_t> targetBytes(const raster::Target& target);
+
+/// The raster target's colours as RGB values convert(channel) (the target's rows: bottom row first).
+template <class T, class Convert>
+std::vector<T> targetRgb(const raster::Target& target, Convert convert) {
+  std::vector<T> rgb(target.color.size() * 3);
+  for (size_t p = 0; p < target.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = convert(target.color[p][c]);
+  return rgb;
+}
+
+/// A width × height picture of `channels` values per pixel, stored bottom row first, in reading
+/// order: top row first.
+template <class T>
+std::vector<T> topRowFirst(const std::vector<T>& bottomUp, int width, int height, int channels) {
+  const size_t row = size_t(width) * channels;
+  std::vector<T> out(row * height);
+  for (int y = 0; y < height; ++y)
+    std::copy_n(&bottomUp[size_t(height - 1 - y) * row], row, &out[size_t(y) * row]);
+  return out;
+}
 
 /// Box-filters a (width·k) × (height·k) picture of bytes (sRGB, bottom row first) down to
 /// width × height, top row first, averaging in linear light.
