@@ -99,25 +99,13 @@ HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, S
 
 }  // namespace detail
 
-namespace {
-
-/// The hybrid model's picture of the list in view `v`, at the size of `o`.
-Image hybridPicture(const detail::HybridDrawList& list, const Scene& scene, const internal::FrameView& v,
-                    const RenderOptions& o) {
-  std::vector<uint8_t> rgb;
-  detail::renderOsMesaHybrid(list, scene, v.projection, v.view, v.width, v.height, o.shade, o.wireframe, rgb);
-  return internal::imageOf(rgb, o);
-}
-
-}  // namespace
-
 Image renderHybrid(const ResultFile& mesh, const Scene& scene, const RenderOptions& o) {
   internal::checkSize(o);
   checkHybridInputs(mesh, scene, o);
   const internal::FrameView v = internal::frameView(mesh, effectiveCamera(mesh, o), o);
   const detail::HybridDrawList list = detail::buildHybridDrawList(
       mesh, scene, o.shade, effectiveExposure(mesh, o), internal::showsStoredColours(mesh, o));
-  return hybridPicture(list, scene, v, o);
+  return internal::litPicture(list, scene, v, o, detail::renderOsMesaHybrid);
 }
 
 }  // namespace rad::viewer

@@ -128,24 +128,13 @@ LocalDrawList buildLocalDrawList(const LocalScene& local, Shading shade) {
 
 }  // namespace detail
 
-namespace {
-
-/// The local model's picture of the list in view `v`, at the size of `o`.
-Image localPicture(const detail::LocalDrawList& list, const Scene& scene, const internal::FrameView& v,
-                   const RenderOptions& o) {
-  std::vector<uint8_t> rgb;
-  detail::renderOsMesaLocal(list, scene, v.projection, v.view, v.width, v.height, o.shade, o.wireframe, rgb);
-  return internal::imageOf(rgb, o);
-}
-
-}  // namespace
-
 Image renderLocal(const LocalScene& local, const RenderOptions& o) {
   internal::checkSize(o);
   checkLocalOptions(o);
   const ResultFile bounds = boundsOnly(local);
   const internal::FrameView v = internal::frameView(bounds, effectiveCamera(bounds, o), o);
-  return localPicture(detail::buildLocalDrawList(local, o.shade), local.scene, v, o);
+  return internal::litPicture(detail::buildLocalDrawList(local, o.shade), local.scene, v, o,
+                              detail::renderOsMesaLocal);
 }
 
 }  // namespace rad::viewer

@@ -62,6 +62,16 @@ FrameView frameView(const ResultFile& mesh, const Camera& c, const RenderOptions
 /// The points in clip space: raster::transform by `mvp`.
 std::vector<glm::vec4> clipCoordinates(const glm::mat4& mvp, const std::vector<glm::vec3>& points);
 
+/// The picture, at the size of `options`, of a lit model's draw list in view `v`, drawn through
+/// OSMesa by `renderLit` (detail::renderOsMesaLocal or detail::renderOsMesaHybrid).
+template <class List, class RenderLit>
+Image litPicture(const List& list, const Scene& scene, const FrameView& v, const RenderOptions& options,
+                 RenderLit renderLit) {
+  std::vector<uint8_t> rgb;
+  renderLit(list, scene, v.projection, v.view, v.width, v.height, options.shade, options.wireframe, rgb);
+  return imageOf(rgb, options);
+}
+
 /// Whether a render draws the file's own display colours: Gouraud at the file's exposure.
 bool showsStoredColours(const ResultFile& mesh, const RenderOptions& options);
 
