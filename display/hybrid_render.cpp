@@ -77,6 +77,11 @@ void reserveVertices(HybridDrawList& list, size_t n) {
   list.colours.reserve(n);
 }
 
+/// Whether the corners take the file's vertex normals: smooth shading and a file that has them.
+bool usesVertexNormals(const ResultFile& mesh, Shading shade) {
+  return shade == Shading::Smooth && !mesh.vertexNormal.empty();
+}
+
 /// The faces grouped by their scene surface, in face order.
 std::vector<std::vector<size_t>> facesBySurface(const ResultFile& mesh, const Scene& scene) {
   return internal::groupBySurface(scene.surfaces.size(), mesh.faces.size(),
@@ -91,7 +96,7 @@ HybridDrawList buildHybridDrawList(const ResultFile& mesh, const Scene& scene, S
   const auto bySurface = facesBySurface(mesh, scene);
   HybridDrawList list;
   reserveVertices(list, base.positions.size());
-  const bool vertexNormals = shade == Shading::Smooth && !mesh.vertexNormal.empty();
+  const bool vertexNormals = usesVertexNormals(mesh, shade);
   internal::appendBatches(list, scene, bySurface, internal::specularBatch,
                           [&](size_t f) { appendFace(list, base, mesh, f, vertexNormals); });
   return list;

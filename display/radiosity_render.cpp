@@ -135,6 +135,14 @@ void renderSoftware(const detail::DrawList& list, const internal::FrameView& v, 
   if (radiance) *radiance = softwareRadiance(target, state, clip, list);
 }
 
+/// Draws the mesh's faces (vertices `clip`) into the item buffer, each as its face index.
+void drawFaceIds(raster::Target& target, const std::vector<glm::vec4>& clip, const ResultFile& mesh,
+                 bool cullBack) {
+  static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
+  raster::drawTriangles(target, cullingState(cullBack), clip.data(), clip.size(),
+                        reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
+}
+
 /// Draws the list in view `v` on the backend `o` names: the display bytes into rgb and, when
 /// o.radiance, the radiance into `radiance` (both bottom row first).
 void drawOnBackend(const detail::DrawList& list, const internal::FrameView& v, const RenderOptions& o,
@@ -238,10 +246,7 @@ Image render(const ResultFile& mesh, const RenderOptions& o) {
 std::vector<uint32_t> renderFaceIds(const ResultFile& mesh, const RenderOptions& o) {
   raster::Target target(o.width, o.height, /*withItem=*/true, /*withColor=*/false);
   const glm::mat4 mvp = viewProjection(mesh, effectiveCamera(mesh, o), o.width, o.height);
-  const std::vector<glm::vec4> clip = internal::clipCoordinates(mvp, mesh.positions);
-  static_assert(sizeof(mesh.faces[0]) == 3 * sizeof(uint32_t), "faces are 3 packed indices");
-  raster::drawTriangles(target, cullingState(o.cullBack), clip.data(), clip.size(),
-                        reinterpret_cast<const uint32_t*>(mesh.faces.data()), mesh.faces.size());
+  drawFaceIds(target, internal::clipCoordinates(mvp, mesh.positions), mesh, o.cullBack);
   return internal::topRowFirst(target.item, target.width, target.height, 1);
 }
 

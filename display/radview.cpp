@@ -252,15 +252,21 @@ rad::Scene sceneBesideResult(const Args& a) {
   return scene;
 }
 
+/// Draws and times the chosen picture of the result: the ladder, hybrid or radiosity.
+Rendered renderResultPicture(const Args& a, const rad::ResultFile& mesh, const rad::Scene& scene,
+                             const RenderOptions& o) {
+  if (a.ladder) return timed([&] { return renderLadder(mesh, scene, o); });
+  if (a.mode == "hybrid") return timed([&] { return renderHybrid(mesh, scene, o); });
+  return timed([&] { return render(mesh, o); });
+}
+
 /// The modes that draw a result (radiosity, hybrid, the ladder): loads the result and the
 /// scene beside it, applies --camera over the result's view, and renders.
 Rendered renderResultMode(const Args& a, RenderOptions o) {
   const rad::ResultFile mesh = rad::readResultFile(a.input);
   const rad::Scene scene = sceneBesideResult(a);
   applyCameraArg(a, mesh, o);
-  if (a.ladder) return timed([&] { return renderLadder(mesh, scene, o); });
-  if (a.mode == "hybrid") return timed([&] { return renderHybrid(mesh, scene, o); });
-  return timed([&] { return render(mesh, o); });
+  return renderResultPicture(a, mesh, scene, o);
 }
 
 /// Loads the inputs of the chosen mode, applies --camera over the view they give, and renders.
