@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -13,6 +12,7 @@
 
 #include "mesh/error.h"
 #include "mesh/input_file.h"
+#include "mesh/number_text.h"
 
 namespace rad {
 namespace {
@@ -62,14 +62,21 @@ std::string withoutCr(std::string line) {
   return line;
 }
 
-/// The next header line (without its line break), at most kMaxHeaderLine bytes.
-bool headerLine(const std::string& bytes, size_t& at, std::string& line, const std::string& path) {
-  if (at >= bytes.size()) return false;
+/// The end of the header line at `at` (its '\n', or the end of the bytes); the line is at most
+/// kMaxHeaderLine bytes.
+size_t headerLineEnd(const std::string& bytes, size_t at, const std::string& path) {
   size_t end = bytes.find('\n', at);
   if (end == std::string::npos) end = bytes.size();
   if (end - at > kMaxHeaderLine)
     throw inputError(path, "PLY header lines of at most " + std::to_string(kMaxHeaderLine) + " bytes",
                      "a longer line");
+  return end;
+}
+
+/// The next header line (without its line break), at most kMaxHeaderLine bytes.
+bool headerLine(const std::string& bytes, size_t& at, std::string& line, const std::string& path) {
+  if (at >= bytes.size()) return false;
+  const size_t end = headerLineEnd(bytes, at, path);
   line = withoutCr(bytes.substr(at, end - at));
   at = std::min(end + 1, bytes.size());
   return true;
@@ -91,6 +98,12 @@ bool wellTyped(const Property& p) {
   return !p.name.empty() && typeSize(p.type) && p.type != "list" && (c.empty() || integerCount);
 }
 
+/// Element e has no property named p yet.
+void checkNewProperty(const Element& e, const Property& p, const std::string& path) {
+  for (const auto& q : e.properties)
+    if (q.name == p.name) throw inputError(path + ": element " + e.name, "each property once", "'" + p.name + "' twice");
+}
+
 /// A property line: a well-typed property of the last element, named once.
 void addProperty(Header& h, std::istringstream& words, const std::string& line, const std::string& path) {
   if (h.elements.empty()) throw inputError(path, "an element before its properties", "'" + line + "'");
@@ -98,10 +111,16 @@ void addProperty(Header& h, std::istringstream& words, const std::string& line, 
   if (!wellTyped(p))
     throw inputError(path, "a property with PLY scalar types (an integer count for a list) and a name",
                      "'" + line + "'");
-  Element& e = h.elements.back();
-  for (const auto& q : e.properties)
-    if (q.name == p.name) throw inputError(path + ": element " + e.name, "each property once", "'" + p.name + "' twice");
-  e.properties.push_back(p);
+  checkNewProperty(h.elements.back(), p, path);
+  h.elements.back().properties.push_back(p);
+}
+
+/// The format a format line names: ascii, binary_little_endian or binary_big_endian.
+Format formatNamed(const std::string& name, const std::string& path) {
+  if (name == "ascii") return Format::Ascii;
+  if (name == "binary_little_endian") return Format::BinaryLittleEndian;
+  if (name == "binary_big_endian") return Format::BinaryBigEndian;
+  throw inputError(path, "format ascii, binary_little_endian or binary_big_endian", "format " + name);
 }
 
 /// A format line: ascii, binary_little_endian or binary_big_endian, once.
@@ -110,22 +129,26 @@ void readFormat(Header& h, std::istringstream& words, bool& format, const std::s
   words >> name >> version;
   if (format) throw inputError(path, "one format line", "two");
   format = true;
-  if (name == "ascii") h.format = Format::Ascii;
-  else if (name == "binary_little_endian") h.format = Format::BinaryLittleEndian;
-  else if (name == "binary_big_endian") h.format = Format::BinaryBigEndian;
-  else throw inputError(path, "format ascii, binary_little_endian or binary_big_endian", "format " + name);
+  h.format = formatNamed(name, path);
 }
 
-/// An element line: a new name and a count (at most INT32_MAX vertices).
-void addElement(Header& h, std::istringstream& words, const std::string& line,
-                std::set<std::string>& names, const std::string& path) {
+/// The rest of an element line: "<name> <count>", the count a whole number (`count` its text).
+Element elementOf(std::istringstream& words, const std::string& line, std::string& count,
+                  const std::string& path) {
   Element e;
-  std::string count;
   words >> e.name >> count;
   char* end = nullptr;
   e.count = std::strtoull(count.c_str(), &end, 10);
   if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
     throw inputError(path, "'element <name> <count>'", "'" + line + "'");
+  return e;
+}
+
+/// An element line: a new name and a count (at most INT32_MAX vertices).
+void addElement(Header& h, std::istringstream& words, const std::string& line,
+                std::set<std::string>& names, const std::string& path) {
+  std::string count;
+  const Element e = elementOf(words, line, count, path);
   if (!names.insert(e.name).second) throw inputError(path, "each element once", "'" + e.name + "' twice");
   if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
     throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
@@ -152,18 +175,31 @@ void headerLineInto(Header& h, const std::string& line, HeaderState& st, const s
     throw inputError(path, "a PLY header line (format, comment, element, property, end_header)", "'" + line + "'");
 }
 
+/// The fewest bytes element e's records take; they fit in the `room` after the header (with
+/// `needed` bytes announced before them, of `bytes` in all).
+uint64_t elementBytes(const Element& e, Format format, uint64_t room, uint64_t needed, size_t bytes,
+                      const std::string& path) {
+  const uint64_t record = minRecordBytes(e, format);
+  if (e.count > room / record || needed > bytes)
+    throw inputError(path + ": element " + e.name,
+                     "at most the " + std::to_string(room / record) + " records the file's size allows",
+                     std::to_string(e.count) + " announced (a truncated file or a wrong count)");
+  return e.count * record;
+}
+
 /// Counts against the file's size (`bytes` in all), before anything is allocated.
 void checkCounts(const Header& h, size_t bytes, const std::string& path) {
   uint64_t needed = 0;
-  for (const auto& e : h.elements) {
-    const uint64_t record = minRecordBytes(e, h.format);
-    if (e.count > (bytes - h.body) / record || needed > bytes)
-      throw inputError(path + ": element " + e.name,
-                       "at most the " + std::to_string((bytes - h.body) / record) + " records the file's size allows",
-                       std::to_string(e.count) + " announced (a truncated file or a wrong count)");
-    needed += e.count * record;
-  }
+  for (const auto& e : h.elements) needed += elementBytes(e, h.format, bytes - h.body, needed, bytes, path);
   if (needed > bytes - h.body) throw inputError(path, "a file as long as its header announces", "a truncated file");
+}
+
+/// The header lines after the magic, into h, up to end_header; `at` ends after it.
+void readHeaderLines(const std::string& bytes, size_t& at, Header& h, const std::string& path) {
+  std::string line;
+  HeaderState st;
+  while (!st.ended && headerLine(bytes, at, line, path)) headerLineInto(h, line, st, path);
+  if (!st.format || !st.ended) throw inputError(path, "a PLY header with a format line and end_header", "none");
 }
 
 /// The header, checked line by line and against the file's size.
@@ -172,9 +208,7 @@ Header parseHeader(const std::string& bytes, const std::string& path) {
   size_t at = 0;
   std::string line;
   if (!headerLine(bytes, at, line, path) || line != "ply") throw inputError(path, "a PLY file", "no 'ply' magic line");
-  HeaderState st;
-  while (!st.ended && headerLine(bytes, at, line, path)) headerLineInto(h, line, st, path);
-  if (!st.format || !st.ended) throw inputError(path, "a PLY header with a format line and end_header", "none");
+  readHeaderLines(bytes, at, h, path);
   h.body = at;
   checkCounts(h, bytes.size(), path);
   return h;
@@ -199,19 +233,32 @@ class BodyReader {
   /// Whether byte i is in the body and not white space.
   bool wordAt(size_t i) const { return i < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[i])); }
 
-  double asciiScalar(const std::string& where) {
+  /// Skips white space: the end of the word that follows (at_ itself at the end of the body).
+  size_t wordEnd() {
     while (spaceAt(at_)) ++at_;
     size_t end = at_;
     while (wordAt(end)) ++end;
-    if (end == at_) throw inputError(where, "a number", "the end of the file (a truncated file)");
-    const std::string word = bytes_.substr(at_, std::min<size_t>(end - at_, 64));
+    return end;
+  }
+
+  /// The word as a number; a word cut at 64 bytes (`cut`) is none.
+  static double asciiNumber(const std::string& word, bool cut, const std::string& where) {
     char* stop = nullptr;
     const double v = std::strtod(word.c_str(), &stop);
-    if (*stop != '\0' || end - at_ > 64) throw inputError(where, "a number", "'" + word + "'");
+    if (*stop != '\0' || cut) throw inputError(where, "a number", "'" + word + "'");
+    return v;
+  }
+
+  /// The next word of an ascii body as a number.
+  double asciiScalar(const std::string& where) {
+    const size_t end = wordEnd();
+    if (end == at_) throw inputError(where, "a number", "the end of the file (a truncated file)");
+    const double v = asciiNumber(bytes_.substr(at_, std::min<size_t>(end - at_, 64)), end - at_ > 64, where);
     at_ = end;
     return v;
   }
 
+  /// The next scalar of type t in a binary body.
   double binaryScalar(const std::string& t, const std::string& where) {
     const size_t n = size_t(typeSize(t));
     if (bytes_.size() - at_ < n) throw inputError(where, "a " + t, "the end of the file (a truncated file)");
@@ -260,23 +307,19 @@ size_t listLength(BodyReader& body, const Property& p, const std::string& where,
   return size_t(n);
 }
 
-/// Index v is no vertex's (of `vertices`).
-[[noreturn]] void badIndex(double v, uint64_t vertices, const std::string& where) {
-  char found[32];
-  std::snprintf(found, sizeof found, "%.17g", v);
-  throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
-                                   : std::string("no face (the file has no vertices)"), found);
+/// v as a face's vertex index: a whole number naming one of `vertices` vertices.
+int vertexIndex(double v, uint64_t vertices, const std::string& where) {
+  if (v < 0 || v >= double(vertices) || v != std::floor(v))
+    throw inputError(where, vertices ? "vertex indices from 0 to " + std::to_string(vertices - 1)
+                                     : std::string("no face (the file has no vertices)"), exactNumberText(v));
+  return int(v);
 }
 
 /// A face's vertex indices: whole numbers below `vertices`.
 std::vector<int> readFaceIndices(BodyReader& body, const Property& p, size_t n, uint64_t vertices,
                                  const std::string& where) {
   std::vector<int> idx(n);
-  for (size_t k = 0; k < n; ++k) {
-    const double v = body.scalar(p.type, where);
-    if (v < 0 || v >= double(vertices) || v != std::floor(v)) badIndex(v, vertices, where);
-    idx[k] = int(v);
-  }
+  for (size_t k = 0; k < n; ++k) idx[k] = vertexIndex(body.scalar(p.type, where), vertices, where);
   return idx;
 }
 
@@ -304,24 +347,33 @@ PlyColumn* addColumns(const Element& e, PlyPolygons& out) {
   return columns.data() + first;
 }
 
+/// Reads property p of a record of e: a list (see readList), or a scalar appended to the next
+/// of `columns` (if any; the pointer moves on).
+void readProperty(BodyReader& body, const Element& e, const Property& p, PlyColumn*& columns,
+                  uint64_t vertices, const std::string& where, PlyPolygons& out) {
+  if (!p.countType.empty()) return readList(body, e, p, vertices, where, out);
+  const double v = body.scalar(p.type, where);
+  if (columns) (columns++)->values.push_back(v);
+}
+
 /// Reads record i of element e; its scalars go to `columns` (if any), in order.
 void readRecord(BodyReader& body, const Element& e, uint64_t i, PlyColumn* columns,
                 uint64_t vertices, const std::string& path, PlyPolygons& out) {
   const std::string record = path + ": " + e.name + " " + std::to_string(i);
-  for (const auto& p : e.properties) {
-    const std::string where = record + ": " + p.name;
-    if (!p.countType.empty()) {
-      readList(body, e, p, vertices, where, out);
-      continue;
-    }
-    const double v = body.scalar(p.type, where);
-    if (columns) (columns++)->values.push_back(v);
-  }
+  for (const auto& p : e.properties) readProperty(body, e, p, columns, vertices, record + ": " + p.name, out);
+}
+
+/// At most one vertex_indices list per element.
+void checkFaceLists(const Element& e, const std::string& path) {
+  int faceLists = 0;
+  for (const auto& p : e.properties) faceLists += isFaceList(e, p);
+  if (faceLists > 1) throw inputError(path + ": element face", "one vertex_indices list", "two");
 }
 
 /// Reads the records of element e; the scalars of vertices and faces go to their columns.
 void readElement(BodyReader& body, const Element& e, uint64_t vertices, const std::string& path,
                  PlyPolygons& out) {
+  checkFaceLists(e, path);
   PlyColumn* columns = addColumns(e, out);
   for (uint64_t i = 0; i < e.count; ++i) readRecord(body, e, i, columns, vertices, path, out);
 }
@@ -334,23 +386,13 @@ uint64_t vertexCount(const Header& h) {
   return vertices;
 }
 
-/// At most one vertex_indices list per element.
-void checkFaceLists(const Element& e, const std::string& path) {
-  int faceLists = 0;
-  for (const auto& p : e.properties) faceLists += isFaceList(e, p);
-  if (faceLists > 1) throw inputError(path + ": element face", "one vertex_indices list", "two");
-}
-
 /// Every element's records, in the header's order.
 PlyPolygons readBody(const std::string& bytes, const Header& h, const std::string& path) {
   PlyPolygons out;
   out.mesh.comments = h.comments;
   const uint64_t vertices = vertexCount(h);
   BodyReader body(bytes, h, path);
-  for (const auto& e : h.elements) {
-    checkFaceLists(e, path);
-    readElement(body, e, vertices, path, out);
-  }
+  for (const auto& e : h.elements) readElement(body, e, vertices, path, out);
   return out;
 }
 
@@ -368,6 +410,26 @@ std::array<int, 3> triangle(const std::vector<int>& face, size_t f, const std::s
   return {face[0], face[1], face[2]};
 }
 
+/// The file's bytes, its magic checked before the rest is read (`what` names the file expected).
+std::string readPlyBytes(const std::string& path, const std::string& what) {
+  return readInputFile(path, what, kMaxInputFileBytes, false,
+                       [&](const std::string& head) { checkMagic(head, path); });
+}
+
+/// The header's format is binary_little_endian, as results are written.
+void checkResultFormat(const Header& header, const std::string& path) {
+  if (header.format != Format::BinaryLittleEndian)
+    throw inputError(path, "binary_little_endian PLY",
+                     std::string("format ") + (header.format == Format::Ascii ? "ascii" : "binary_big_endian"));
+}
+
+/// The faces read, each a triangle.
+std::vector<std::array<int, 3>> triangles(const std::vector<std::vector<int>>& faces, const std::string& path) {
+  std::vector<std::array<int, 3>> out;
+  for (size_t f = 0; f < faces.size(); ++f) out.push_back(triangle(faces[f], f, path));
+  return out;
+}
+
 }  // namespace
 
 const PlyColumn* findColumn(const std::vector<PlyColumn>& columns, const std::string& name) {
@@ -377,21 +439,16 @@ const PlyColumn* findColumn(const std::vector<PlyColumn>& columns, const std::st
 }
 
 PlyPolygons readPlyPolygons(const std::string& path) {
-  const std::string bytes = readInputFile(path, "a PLY file", kMaxInputFileBytes, false,
-                                          [&](const std::string& head) { checkMagic(head, path); });
-  const Header header = parseHeader(bytes, path);
-  return readBody(bytes, header, path);
+  const std::string bytes = readPlyBytes(path, "a PLY file");
+  return readBody(bytes, parseHeader(bytes, path), path);
 }
 
 PlyMesh readPly(const std::string& path) {
-  const std::string bytes = readInputFile(path, "a readable PLY file", kMaxInputFileBytes, false,
-                                          [&](const std::string& head) { checkMagic(head, path); });
+  const std::string bytes = readPlyBytes(path, "a readable PLY file");
   const Header header = parseHeader(bytes, path);
-  if (header.format != Format::BinaryLittleEndian)
-    throw inputError(path, "binary_little_endian PLY",
-                     std::string("format ") + (header.format == Format::Ascii ? "ascii" : "binary_big_endian"));
+  checkResultFormat(header, path);
   PlyPolygons read = readBody(bytes, header, path);
-  for (size_t f = 0; f < read.faces.size(); ++f) read.mesh.faces.push_back(triangle(read.faces[f], f, path));
+  read.mesh.faces = triangles(read.faces, path);
   return std::move(read.mesh);
 }
 

@@ -9,6 +9,7 @@
 
 #include "mesh/camera.h"
 #include "mesh/error.h"
+#include "mesh/number_text.h"
 #include "mesh/ply_reader.h"
 #include "mesh/ply_writer.h"
 
@@ -21,43 +22,46 @@ const char* const kPosition[3] = {"x", "y", "z"};
 const char* const kNormal[3] = {"nx", "ny", "nz"};
 const char* const kColour[3] = {"red", "green", "blue"};
 
-/// The shortest text of a number, as the messages show it.
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 // ---- Writing ----------------------------------------------------------------------------------
+
+/// Channel k of `values` as a column `name` of `type`.
+template <class Vec3>
+PlyColumn channelColumn(const char* name, PlyColumn::Type type, const std::vector<Vec3>& values, int k) {
+  PlyColumn c{name, type, {}};
+  c.values.reserve(values.size());
+  for (const auto& v : values) c.values.push_back(double(v[k]));
+  return c;
+}
 
 /// Appends three columns `names` of `type`, one value per element of `values` and channel.
 template <class Vec3>
 void addColumns(std::vector<PlyColumn>& columns, const char* const names[3], PlyColumn::Type type,
                 const std::vector<Vec3>& values) {
-  for (int k = 0; k < 3; ++k) {
-    PlyColumn c{names[k], type, {}};
-    c.values.reserve(values.size());
-    for (const auto& v : values) c.values.push_back(double(v[k]));
-    columns.push_back(std::move(c));
-  }
+  for (int k = 0; k < 3; ++k) columns.push_back(channelColumn(names[k], type, values, k));
+}
+
+/// The camera comment: "camera eye X Y Z target X Y Z up X Y Z fov_y_deg F".
+std::string cameraComment(const Camera& c) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "camera eye %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov_y_deg %.9g",
+                c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
+                c.up.z, c.fovYDeg);
+  return buf;
+}
+
+/// The exposure comment: "exposure K".
+std::string exposureComment(double exposure) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "exposure %.9g", exposure);
+  return buf;
 }
 
 /// The header comments: the camera, then the exposure.
 std::vector<std::string> comments(const ResultFile& r) {
   std::vector<std::string> out;
-  char buf[512];
-  if (r.camera) {
-    const Camera& c = *r.camera;
-    std::snprintf(buf, sizeof buf,
-                  "camera eye %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov_y_deg %.9g",
-                  c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
-                  c.up.z, c.fovYDeg);
-    out.push_back(buf);
-  }
-  if (r.exposure) {
-    std::snprintf(buf, sizeof buf, "exposure %.9g", *r.exposure);
-    out.push_back(buf);
-  }
+  if (r.camera) out.push_back(cameraComment(*r.camera));
+  if (r.exposure) out.push_back(exposureComment(*r.exposure));
   return out;
 }
 
@@ -87,25 +91,43 @@ struct RequiredColumns {
   const PlyColumn *position[3], *vertexB[3], *faceB[3];
 };
 
-/// Finds the required columns; throws InputError listing every missing one.
-RequiredColumns requiredColumns(const PlyMesh& ply, const std::string& path) {
+/// Looks up columns, noting each missing one as "<element> <name>".
+struct ColumnLookup {
   std::vector<std::string> missing;
-  auto need = [&](const std::vector<PlyColumn>& cols, const char* name, const char* element) {
-    const PlyColumn* c = findColumn(cols, name);
+
+  /// The three columns `names` of `element` into `out` (null where missing).
+  void three(const PlyColumn* out[3], const std::vector<PlyColumn>& columns, const char* const names[3],
+             const char* element) {
+    for (int k = 0; k < 3; ++k) out[k] = one(columns, names[k], element);
+  }
+
+  /// The column `name` of `element`, or null (noted).
+  const PlyColumn* one(const std::vector<PlyColumn>& columns, const char* name, const char* element) {
+    const PlyColumn* c = findColumn(columns, name);
     if (!c) missing.push_back(std::string(element) + " " + name);
     return c;
-  };
-  RequiredColumns r;
-  for (int k = 0; k < 3; ++k) r.position[k] = need(ply.vertex, kPosition[k], "vertex");
-  for (int k = 0; k < 3; ++k) r.vertexB[k] = need(ply.vertex, kChannels[k], "vertex");
-  for (int k = 0; k < 3; ++k) r.faceB[k] = need(ply.face, kChannels[k], "face");
-  if (missing.empty()) return r;
+  }
+};
+
+/// The words joined by ", ".
+std::string commaList(const std::vector<std::string>& words) {
   std::string list;
-  for (size_t i = 0; i < missing.size(); ++i) list += (i ? ", " : "") + missing[i];
+  for (size_t i = 0; i < words.size(); ++i) list += (i ? ", " : "") + words[i];
+  return list;
+}
+
+/// Finds the required columns; throws InputError listing every missing one.
+RequiredColumns requiredColumns(const PlyMesh& ply, const std::string& path) {
+  ColumnLookup lookup;
+  RequiredColumns r;
+  lookup.three(r.position, ply.vertex, kPosition, "vertex");
+  lookup.three(r.vertexB, ply.vertex, kChannels, "vertex");
+  lookup.three(r.faceB, ply.face, kChannels, "face");
+  if (lookup.missing.empty()) return r;
   throw inputError(path,
                    "a radiosity result (vertex and face properties radiosity_r, radiosity_g, "
                    "radiosity_b, as `radiosity solve` writes)",
-                   "a PLY without " + list);
+                   "a PLY without " + commaList(lookup.missing));
 }
 
 /// The three columns `names` when all are there, else nullptr in each.
@@ -125,7 +147,25 @@ glm::dvec3 row(const PlyColumn* const c[3], size_t i) {
 /// Throws unless b is a finite radiosity >= 0 in each channel; `where` names the vertex or face.
 void checkRadiosity(const glm::dvec3& b, int k, const std::string& where) {
   if (!(std::isfinite(b[k]) && b[k] >= 0))
-    throw inputError(where + ": " + kChannels[k], "a finite radiosity >= 0", fmt(b[k]));
+    throw inputError(where + ": " + kChannels[k], "a finite radiosity >= 0", shortNumberText(b[k]));
+}
+
+/// Throws unless the position p is finite and b a finite radiosity >= 0, channel by channel.
+void checkVertex(const glm::dvec3& p, const glm::dvec3& b, const std::string& where) {
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(p[k])) throw inputError(where, "finite coordinates", "a non-finite one");
+    checkRadiosity(b, k, where);
+  }
+}
+
+/// Vertex i's position and radiosity, checked and stored; the bounding box grown to it.
+void readVertex(const RequiredColumns& cols, size_t i, ResultFile& r) {
+  const glm::dvec3 p = row(cols.position, i), b = row(cols.vertexB, i);
+  checkVertex(p, b, r.path + ": vertex " + std::to_string(i));
+  r.positions[i] = glm::vec3(p);
+  r.vertexRadiosity[i] = b;
+  r.boundsMin = glm::min(r.boundsMin, p);
+  r.boundsMax = glm::max(r.boundsMax, p);
 }
 
 /// Positions (finite), vertex radiosities (finite, >= 0) and their bounding box.
@@ -135,18 +175,16 @@ void readVertices(const RequiredColumns& cols, ResultFile& r) {
   r.vertexRadiosity.resize(nv);
   r.boundsMin = glm::dvec3(std::numeric_limits<double>::infinity());
   r.boundsMax = -r.boundsMin;
-  for (size_t i = 0; i < nv; ++i) {
-    const glm::dvec3 p = row(cols.position, i), b = row(cols.vertexB, i);
-    const std::string where = r.path + ": vertex " + std::to_string(i);
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(p[k])) throw inputError(where, "finite coordinates", "a non-finite one");
-      checkRadiosity(b, k, where);
-    }
-    r.positions[i] = glm::vec3(p);
-    r.vertexRadiosity[i] = b;
-    r.boundsMin = glm::min(r.boundsMin, p);
-    r.boundsMax = glm::max(r.boundsMax, p);
-  }
+  for (size_t i = 0; i < nv; ++i) readVertex(cols, i, r);
+}
+
+/// Vertex i's value in colour column c, from 0 to 255.
+uint8_t colourByte(const PlyColumn& c, size_t i, const std::string& path) {
+  const double v = c.values[i];
+  if (!(v >= 0 && v <= 255))
+    throw inputError(path + ": vertex " + std::to_string(i) + ": " + c.name, "a colour from 0 to 255",
+                     shortNumberText(v));
+  return uint8_t(v);
 }
 
 /// The display colours, when the file has them, each from 0 to 255.
@@ -155,13 +193,7 @@ void readColours(const PlyMesh& ply, ResultFile& r) {
   if (!rgb[0]) return;
   r.vertexColour.resize(r.positions.size());
   for (size_t i = 0; i < r.positions.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const double v = rgb[size_t(k)]->values[i];
-      if (!(v >= 0 && v <= 255))
-        throw inputError(r.path + ": vertex " + std::to_string(i) + ": " + rgb[size_t(k)]->name,
-                         "a colour from 0 to 255", fmt(v));
-      r.vertexColour[i][size_t(k)] = uint8_t(v);
-    }
+    for (int k = 0; k < 3; ++k) r.vertexColour[i][size_t(k)] = colourByte(*rgb[size_t(k)], i, r.path);
 }
 
 /// The vertex normals, when the file has them.
@@ -173,17 +205,20 @@ void readNormals(const PlyMesh& ply, ResultFile& r) {
     r.vertexNormal[i] = glm::vec3(row(n.data(), i));
 }
 
-/// The faces' surface indices, when the file has them: whole numbers >= 0 within int.
+/// Face f's surface index: a whole number >= 0 within int.
+int surfaceIndex(const PlyColumn& surface, size_t f, const std::string& path) {
+  const double v = surface.values[f];
+  if (!(v >= 0 && v < 2147483647.0 && v == std::floor(v)))
+    throw inputError(path + ": face " + std::to_string(f) + ": surface", "a surface index >= 0", shortNumberText(v));
+  return int(v);
+}
+
+/// The faces' surface indices, when the file has them.
 void readSurfaces(const PlyMesh& ply, ResultFile& r) {
   const PlyColumn* surface = findColumn(ply.face, "surface");
   if (!surface) return;
   r.faceSurface.resize(r.faces.size());
-  for (size_t f = 0; f < r.faces.size(); ++f) {
-    const double v = surface->values[f];
-    if (!(v >= 0 && v < 2147483647.0 && v == std::floor(v)))
-      throw inputError(r.path + ": face " + std::to_string(f) + ": surface", "a surface index >= 0", fmt(v));
-    r.faceSurface[f] = int(v);
-  }
+  for (size_t f = 0; f < r.faces.size(); ++f) r.faceSurface[f] = surfaceIndex(*surface, f, r.path);
 }
 
 /// The elements' own radiosities (finite, >= 0).
@@ -235,6 +270,20 @@ void readComments(const PlyMesh& ply, ResultFile& r) {
   }
 }
 
+/// The vertices' parts: positions and radiosities, then the optional colours and normals.
+void readVertexParts(const PlyMesh& ply, const RequiredColumns& cols, ResultFile& r) {
+  readVertices(cols, r);
+  readColours(ply, r);
+  readNormals(ply, r);
+}
+
+/// The faces' parts: the triangles, then the optional surface indices and the radiosities.
+void readFaceParts(const PlyMesh& ply, const RequiredColumns& cols, ResultFile& r) {
+  r.faces = ply.faces;
+  readSurfaces(ply, r);
+  readFaceRadiosity(cols, r);
+}
+
 /// Each optional part is empty or has one value per vertex or face.
 void checkSizes(const ResultFile& r) {
   const size_t nv = r.positions.size(), nf = r.faces.size();
@@ -263,12 +312,8 @@ ResultFile readResultFile(const std::string& path) {
   r.path = path;
   const RequiredColumns cols = requiredColumns(ply, path);
   if (ply.faces.empty()) throw inputError(path, "a mesh with faces", "none");
-  readVertices(cols, r);
-  readColours(ply, r);
-  readNormals(ply, r);
-  r.faces = ply.faces;
-  readSurfaces(ply, r);
-  readFaceRadiosity(cols, r);
+  readVertexParts(ply, cols, r);
+  readFaceParts(ply, cols, r);
   readComments(ply, r);
   return r;
 }
