@@ -1,6 +1,7 @@
 #include "mesh/mesh_file.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -74,20 +75,38 @@ bool isVertexIndex(const std::string& word, long long vertices) {
   return !word.empty() && *end == '\0' && errno != ERANGE && inRange;
 }
 
+/// A face corner's word ("v", "v/vt", "v//vn" or "v/vt/vn"): its vertex index names one of the
+/// `vertices` defined so far.
+void checkCornerIndex(const std::string& word, long long vertices, const std::string& where) {
+  const std::string first = word.substr(0, word.find('/'));
+  if (!isVertexIndex(first, vertices))
+    throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
+                                std::to_string(vertices) + ", counting back)", "'" + first + "'");
+}
+
 /// The rest of a face (line, point) statement: indices of the `vertices` defined so far
 /// (1-based, or negative counting back), at most kMaxObjFaceVertices of them.
 void checkFaceIndices(std::istringstream& words, long long vertices, const std::string& where) {
   int corners = 0;
-  for (std::string word; words >> word; ++corners) {
-    const std::string first = word.substr(0, word.find('/'));
-    if (!isVertexIndex(first, vertices))
-      throw inputError(where, "vertex indices from 1 to " + std::to_string(vertices) + " (or -1 to -" +
-                                  std::to_string(vertices) + ", counting back)", "'" + first + "'");
-  }
+  for (std::string word; words >> word; ++corners) checkCornerIndex(word, vertices, where);
   // tinyobjloader counts a face's corners in one byte.
   if (corners > kMaxObjFaceVertices)
     throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
                      std::to_string(corners));
+}
+
+/// One statement (`key`, then the rest of its line in `words`) of an OBJ or, if `material`, an
+/// MTL text; `vertices` counts the vertex statements so far.
+void checkObjStatement(const std::string& key, std::istringstream& words, bool material,
+                       long long& vertices, const std::string& where) {
+  // The colours we take (Kd, Ke) and the vertex positions: finite numbers (an RGB colour;
+  // tinyobjloader reads neither spectral nor xyz colours).
+  if (material ? (key == "Kd" || key == "Ke") : key == "v") {
+    checkNumbers(words, key, where);
+    vertices += key == "v";
+  } else if (!material && (key == "f" || key == "l" || key == "p")) {
+    checkFaceIndices(words, vertices, where);
+  }
 }
 
 /// Checks the lines tinyobjloader would read leniently (it turns "nan" into 0 and clamps
@@ -100,16 +119,7 @@ void checkObjText(const std::string& text, const std::string& path, bool materia
   for (int n = 1; std::getline(lines, line); ++n) {
     std::istringstream words(line.substr(0, line.find('#')));
     std::string key;
-    if (!(words >> key)) continue;
-    const std::string where = path + ": line " + std::to_string(n);
-    // The colours we take (Kd, Ke) and the vertex positions: finite numbers (an RGB colour;
-    // tinyobjloader reads neither spectral nor xyz colours).
-    if (material ? (key == "Kd" || key == "Ke") : key == "v") {
-      checkNumbers(words, key, where);
-      vertices += key == "v";
-    } else if (!material && (key == "f" || key == "l" || key == "p")) {
-      checkFaceIndices(words, vertices, where);
-    }
+    if (words >> key) checkObjStatement(key, words, material, vertices, path + ": line " + std::to_string(n));
   }
 }
 
@@ -125,19 +135,24 @@ void addMaterialFile(const std::string& path, const std::string& name, const std
   if (text.size() > kMaxMaterialBytes) throw inputError(where, "material files of at most 64 MiB in all", "more");
 }
 
+/// Line n of the OBJ at `path`: if it is an `mtllib` statement, the MTL files it names are
+/// appended to `text`.
+void addMaterialFiles(const std::string& line, int n, const std::string& path, std::set<std::string>& read,
+                      std::string& text) {
+  std::istringstream words(line);
+  std::string word;
+  if (!(words >> word) || word != "mtllib") return;
+  const std::string where = path + ": line " + std::to_string(n);
+  for (std::string name; words >> name;) addMaterialFile(path, name, where, read, text);
+}
+
 /// The text of every MTL file the OBJ names (`mtllib`), each read as an input file: tinyobj
 /// gets text, never a path it would open itself.
 std::string materialText(const std::string& obj, const std::string& path) {
   std::istringstream lines(obj);
   std::string line, text;
   std::set<std::string> read;
-  for (int n = 1; std::getline(lines, line); ++n) {
-    std::istringstream words(line);
-    std::string word;
-    if (!(words >> word) || word != "mtllib") continue;
-    const std::string where = path + ": line " + std::to_string(n);
-    for (std::string name; words >> name;) addMaterialFile(path, name, where, read, text);
-  }
+  for (int n = 1; std::getline(lines, line); ++n) addMaterialFiles(line, n, path, read, text);
   return text;
 }
 
@@ -191,6 +206,11 @@ std::string faceWhere(const tinyobj::shape_t& shape, size_t f, const std::string
   return path + ": " + (shape.name.empty() ? "" : "object " + shape.name + ": ") + "face " + std::to_string(f + 1);
 }
 
+/// Vertex vi's position.
+glm::dvec3 objPoint(const tinyobj::attrib_t& attrib, size_t vi) {
+  return {attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]};
+}
+
 /// Face f of the shape, whose corners start at index `offset`, as a polygon.
 Polygon objFace(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, size_t f,
                 size_t offset, const std::string& path) {
@@ -199,11 +219,15 @@ Polygon objFace(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, 
   if (offset + n > shape.mesh.indices.size()) throw inputError(face, "its vertex indices", "fewer");
   const size_t vertices = attrib.vertices.size() / 3;
   Polygon polygon;
-  for (size_t k = 0; k < n; ++k) {
-    const size_t vi = objVertex(shape.mesh.indices[offset + k], vertices, face);
-    polygon.outer.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
-  }
+  for (size_t k = 0; k < n; ++k)
+    polygon.outer.push_back(objPoint(attrib, objVertex(shape.mesh.indices[offset + k], vertices, face)));
   return polygon;
+}
+
+/// Face f's material id among `materials` (-1: none, or an unknown one).
+int faceMaterial(const tinyobj::shape_t& shape, size_t f, int materials) {
+  const int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+  return mat >= materials ? -1 : mat;
 }
 
 /// Adds the shape's faces to the groups of their materials (-1: none, or an unknown one).
@@ -214,10 +238,15 @@ void addShapeFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attri
   for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
     Polygon polygon = objFace(shape, attrib, f, offset, path);
     offset += shape.mesh.num_face_vertices[f];
-    int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-    if (mat >= materials) mat = -1;
-    groups[mat].faces.push_back(std::move(polygon));
+    groups[faceMaterial(shape, f, materials)].faces.push_back(std::move(polygon));
   }
+}
+
+/// The group takes the MTL material's name and colours (Kd, Ke: finite).
+void nameGroup(const tinyobj::material_t& m, const std::string& path, MeshFileGroup& group) {
+  group.material = m.name;
+  group.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
+  group.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
 }
 
 /// The groups in material order, each named with its MTL material's name and colours.
@@ -226,12 +255,7 @@ std::vector<MeshFileGroup> namedGroups(std::map<int, MeshFileGroup>& groups,
                                        const std::string& path) {
   std::vector<MeshFileGroup> out;
   for (auto& [id, group] : groups) {
-    if (id >= 0) {
-      const auto& m = materials[size_t(id)];
-      group.material = m.name;
-      group.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
-      group.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
-    }
+    if (id >= 0) nameGroup(materials[size_t(id)], path, group);
     out.push_back(std::move(group));
   }
   return out;
@@ -251,18 +275,27 @@ std::vector<MeshFileGroup> readObj(const std::string& path) {
   return namedGroups(groups, reader.GetMaterials(), path);
 }
 
+/// The PLY's x, y and z vertex columns: they are all there.
+std::array<const PlyColumn*, 3> plyPositions(const PlyPolygons& ply, const std::string& path) {
+  const std::array<const PlyColumn*, 3> xyz = {findColumn(ply.mesh.vertex, "x"), findColumn(ply.mesh.vertex, "y"),
+                                               findColumn(ply.mesh.vertex, "z")};
+  if (!xyz[0] || !xyz[1] || !xyz[2]) throw inputError(path, "a vertex element with x, y and z", "none");
+  return xyz;
+}
+
+/// A PLY face (its vertex indices) as a polygon of the positions in columns `xyz`.
+Polygon plyFace(const std::vector<int>& f, const std::array<const PlyColumn*, 3>& xyz) {
+  Polygon face;
+  for (int v : f) face.outer.emplace_back(xyz[0]->values[size_t(v)], xyz[1]->values[size_t(v)], xyz[2]->values[size_t(v)]);
+  return face;
+}
+
 /// A PLY mesh: its vertices' x, y, z and its faces.
 std::vector<MeshFileGroup> readPlyMesh(const std::string& path) {
   const PlyPolygons ply = readPlyPolygons(path);
-  const PlyColumn* xyz[3] = {findColumn(ply.mesh.vertex, "x"), findColumn(ply.mesh.vertex, "y"),
-                             findColumn(ply.mesh.vertex, "z")};
-  if (!xyz[0] || !xyz[1] || !xyz[2]) throw inputError(path, "a vertex element with x, y and z", "none");
+  const auto xyz = plyPositions(ply, path);
   MeshFileGroup group;
-  for (const auto& f : ply.faces) {
-    Polygon face;
-    for (int v : f) face.outer.emplace_back(xyz[0]->values[size_t(v)], xyz[1]->values[size_t(v)], xyz[2]->values[size_t(v)]);
-    group.faces.push_back(std::move(face));
-  }
+  for (const auto& f : ply.faces) group.faces.push_back(plyFace(f, xyz));
   return {std::move(group)};
 }
 
@@ -336,6 +369,13 @@ Polygon readOffFace(OffWords& words, const std::vector<glm::dvec3>& points) {
   return face;
 }
 
+/// The `faces` face lines, of vertices among `points`, as one group.
+MeshFileGroup readOffFaces(OffWords& words, uint64_t faces, const std::vector<glm::dvec3>& points) {
+  MeshFileGroup group;
+  for (uint64_t f = 0; f < faces; ++f) group.faces.push_back(readOffFace(words, points));
+  return group;
+}
+
 /// An OFF file (Geomview): "OFF", the vertex, face and edge counts, x y z per vertex, then
 /// "n i1 … in" per face. Counts are checked against the file's size before anything else.
 std::vector<MeshFileGroup> readOff(const std::string& path) {
@@ -346,10 +386,14 @@ std::vector<MeshFileGroup> readOff(const std::string& path) {
   const uint64_t vertices = words.count("a vertex count", text.size() / 6);
   const uint64_t faces = words.count("a face count", text.size() / 8);
   words.count("an edge count", UINT64_MAX >> 12);
-  const std::vector<glm::dvec3> points = readOffPoints(words, vertices);
-  MeshFileGroup group;
-  for (uint64_t f = 0; f < faces; ++f) group.faces.push_back(readOffFace(words, points));
-  return {std::move(group)};
+  return {readOffFaces(words, faces, readOffPoints(words, vertices))};
+}
+
+/// A file (or something else) is at the path.
+void checkExists(const std::string& path, const std::string& where) {
+  std::error_code missing;
+  if (!std::filesystem::exists(path, missing))
+    throw inputError(where, "a readable mesh file", "no file at " + path + (missing ? " (" + missing.message() + ")" : ""));
 }
 
 /// The path ends in .obj, .ply or .off (any case) and names a file: its extension, lower case.
@@ -357,9 +401,7 @@ std::string checkMeshPath(const std::string& path, const std::string& where) {
   const std::string ext = lowerExtension(path);
   if (ext != "obj" && ext != "ply" && ext != "off")
     throw inputError(where, "a mesh file ending in .obj, .ply or .off", path);
-  std::error_code missing;
-  if (!std::filesystem::exists(path, missing))
-    throw inputError(where, "a readable mesh file", "no file at " + path + (missing ? " (" + missing.message() + ")" : ""));
+  checkExists(path, where);
   return ext;
 }
 
@@ -370,17 +412,22 @@ size_t faceCount(const std::vector<MeshFileGroup>& groups) {
   return faces;
 }
 
-}  // namespace
-
-std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
-  const std::string ext = checkMeshPath(path, where);
-  std::vector<MeshFileGroup> groups;
+/// The groups of the mesh file at `path` (`ext` its checked extension); an error names the
+/// scene's place (`where`), then the file's.
+std::vector<MeshFileGroup> readMeshGroups(const std::string& path, const std::string& ext,
+                                          const std::string& where) {
   try {
     inputFileSize(path, "a readable mesh file");  // a FIFO or a folder: say so before reading
-    groups = ext == "obj" ? readObj(path) : ext == "ply" ? readPlyMesh(path) : readOff(path);
+    return ext == "obj" ? readObj(path) : ext == "ply" ? readPlyMesh(path) : readOff(path);
   } catch (const InputError& e) {
     throw InputError(where + ": " + e.what());  // the scene's place, then the file's
   }
+}
+
+}  // namespace
+
+std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
+  std::vector<MeshFileGroup> groups = readMeshGroups(path, checkMeshPath(path, where), where);
   if (faceCount(groups) == 0)
     throw inputError(where + ": " + path, "a mesh file with faces",
                      "none that parse (a damaged or empty file)");

@@ -41,27 +41,39 @@ void checkColumns(const std::vector<PlyColumn>& columns, size_t n) {
   for (const auto& c : columns) RAD_CHECK_EQ(c.values.size(), n);
 }
 
+/// A header line "property <type> <name>" per column.
+void writeProperties(std::ostream& out, const std::vector<PlyColumn>& columns) {
+  for (const auto& c : columns) out << "property " << typeName(c.type) << " " << c.name << "\n";
+}
+
 /// The header: the comments, then nv vertices and the triangles with their columns.
 void writeHeader(std::ostream& out, const PlyMesh& mesh, size_t nv) {
   out << "ply\nformat binary_little_endian 1.0\n";
   for (const auto& c : mesh.comments) out << "comment " << c << "\n";
   out << "element vertex " << nv << "\n";
-  for (const auto& c : mesh.vertex) out << "property " << typeName(c.type) << " " << c.name << "\n";
+  writeProperties(out, mesh.vertex);
   out << "element face " << mesh.faces.size() << "\n";
   out << "property list uchar int vertex_indices\n";
-  for (const auto& c : mesh.face) out << "property " << typeName(c.type) << " " << c.name << "\n";
+  writeProperties(out, mesh.face);
   out << "end_header\n";
+}
+
+/// Record i: its value in each column.
+void writeRecord(std::ostream& out, const std::vector<PlyColumn>& columns, size_t i) {
+  for (const auto& c : columns) putValue(out, c.type, c.values[i]);
+}
+
+/// Triangle f's record: its corner count (3), its corners, then its columns.
+void writeTriangle(std::ostream& out, const PlyMesh& mesh, size_t f) {
+  put(out, uint8_t(3));
+  for (int k = 0; k < 3; ++k) put(out, int32_t(mesh.faces[f][k]));
+  writeRecord(out, mesh.face, f);
 }
 
 /// The records: each vertex's columns, then each triangle's corners and columns.
 void writeBody(std::ostream& out, const PlyMesh& mesh, size_t nv) {
-  for (size_t i = 0; i < nv; ++i)
-    for (const auto& c : mesh.vertex) putValue(out, c.type, c.values[i]);
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    put(out, uint8_t(3));
-    for (int k = 0; k < 3; ++k) put(out, int32_t(mesh.faces[f][k]));
-    for (const auto& c : mesh.face) putValue(out, c.type, c.values[f]);
-  }
+  for (size_t i = 0; i < nv; ++i) writeRecord(out, mesh.vertex, i);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) writeTriangle(out, mesh, f);
 }
 
 }  // namespace

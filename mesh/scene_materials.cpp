@@ -48,6 +48,14 @@ void readReflectance(const Node& n, Material& m) {
   checkUsableDiffuse(n, m.reflectance);
 }
 
+/// The local model's diffuse and ambient colours not given: the reflectance.
+void defaultLocalColours(const Node& n, Material& m) {
+  if (n.has("preset")) return;
+  // Without a preset the local model sees the radiosity colour, as a user would expect.
+  if (!n.has("diffuse")) m.diffuse = glm::dvec4(m.reflectance, 1.0);
+  if (!n.has("ambient")) m.ambient = glm::dvec4(m.reflectance, 1.0);
+}
+
 /// One named material: preset, local-model colours, reflectance and emission.
 Material readMaterial(const Node& n, const std::string& name) {
   n.expectObject({"reflectance", "emission", "preset", "ambient", "diffuse", "specular",
@@ -57,11 +65,7 @@ Material readMaterial(const Node& n, const std::string& name) {
   if (n.has("preset")) applyPreset(n["preset"], m);
   readLocalModel(n, m);
   readReflectance(n, m);
-  if (!n.has("preset")) {
-    // Without a preset the local model sees the radiosity colour, as a user would expect.
-    if (!n.has("diffuse")) m.diffuse = glm::dvec4(m.reflectance, 1.0);
-    if (!n.has("ambient")) m.ambient = glm::dvec4(m.reflectance, 1.0);
-  }
+  defaultLocalColours(n, m);
   if (n.has("emission")) m.emission = nonNegativeRgb(n["emission"], "a finite emission >= 0");
   return m;
 }
@@ -86,6 +90,13 @@ glm::dvec3 mtlExitance(const Node& s, const MeshFileGroup& group) {
   return exitance;
 }
 
+/// The materials' names, in order.
+std::vector<std::string> materialNames(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const auto& m : scene.materials) names.push_back(m.name);
+  return names;
+}
+
 }  // namespace
 
 void readMaterials(const Node& n, Scene& scene) {
@@ -98,9 +109,7 @@ int materialIndex(const Node& n, const Scene& scene) {
   std::string name = n.string();
   for (size_t i = 0; i < scene.materials.size(); ++i)
     if (scene.materials[i].name == name) return int(i);
-  std::vector<std::string> names;
-  for (const auto& m : scene.materials) names.push_back(m.name);
-  n.fail("a material defined in \"materials\" (" + join(names) + ")");
+  n.fail("a material defined in \"materials\" (" + join(materialNames(scene)) + ")");
 }
 
 int addMtlMaterial(const Node& s, const MeshFileGroup& group, Scene& scene) {
