@@ -13,19 +13,28 @@ namespace {
 /// GL_MAX_LIGHTS in every OpenGL implementation.
 constexpr size_t kMaxLights = 8;
 
-/// The light's type, from its "type" key, and the keys a light of that type accepts.
-Light::Type lightType(const Node& n, std::vector<std::string>& keys) {
-  const std::string type = n["type"].string();
-  keys = {"type", "ambient", "diffuse", "specular"};
-  if (type == "directional") {
-    keys.push_back("direction");
-    return Light::Type::Directional;
-  }
-  if (type != "point" && type != "spot") n["type"].fail("\"directional\", \"point\" or \"spot\"");
-  for (const char* k : {"position", "attenuation"}) keys.push_back(k);
-  if (type == "spot")
-    for (const char* k : {"direction", "cutoff_deg", "exponent"}) keys.push_back(k);
-  return type == "point" ? Light::Type::Point : Light::Type::Spot;
+/// The value that the node's string names in `values`; `expected` lists the names for messages.
+template <class T>
+T namedValue(const Node& n, const std::map<std::string, T>& values, const char* expected) {
+  const auto it = values.find(n.string());
+  if (it == values.end()) n.fail(expected);
+  return it->second;
+}
+
+/// The light's type, from its "type" key (node t).
+Light::Type lightType(const Node& t) {
+  static const std::map<std::string, Light::Type> types = {
+      {"directional", Light::Type::Directional}, {"point", Light::Type::Point}, {"spot", Light::Type::Spot}};
+  return namedValue(t, types, "\"directional\", \"point\" or \"spot\"");
+}
+
+/// The keys a light of that type accepts.
+std::vector<std::string> lightKeys(Light::Type type) {
+  std::vector<std::string> keys = {"type", "ambient", "diffuse", "specular"};
+  if (type == Light::Type::Directional) keys.push_back("direction");
+  else keys.insert(keys.end(), {"position", "attenuation"});
+  if (type == Light::Type::Spot) keys.insert(keys.end(), {"direction", "cutoff_deg", "exponent"});
+  return keys;
 }
 
 /// The key a light of its type must have.
@@ -52,16 +61,19 @@ glm::dvec3 readAttenuation(const Node& a) {
   return k;
 }
 
+/// A spot light's cone: its cutoff angle and exponent.
+void readSpotCone(const Node& n, Light& l) {
+  l.cutoffDeg = required(n, "cutoff_deg").number(0, 90, "[0, 90]");
+  if (n.has("exponent")) l.exponent = n["exponent"].number(0, 128, "[0, 128]");
+}
+
 /// The light's colours, attenuation and spot cone.
 void readShining(const Node& n, Light& l) {
   if (n.has("ambient")) l.ambient = n["ambient"].color();
   if (n.has("diffuse")) l.diffuse = n["diffuse"].color();
   if (n.has("specular")) l.specular = n["specular"].color();
   if (n.has("attenuation")) l.attenuation = readAttenuation(n["attenuation"]);
-  if (l.type == Light::Type::Spot) {
-    l.cutoffDeg = required(n, "cutoff_deg").number(0, 90, "[0, 90]");
-    if (n.has("exponent")) l.exponent = n["exponent"].number(0, 128, "[0, 128]");
-  }
+  if (l.type == Light::Type::Spot) readSpotCone(n, l);
 }
 
 /// One light: its type, then the keys that type accepts.
@@ -69,9 +81,8 @@ Light readLight(const Node& n) {
   if (!n.value().is_object()) n.fail("an object");
   if (!n.has("type")) n.failWith("a \"type\" key", "none");
   Light l;
-  std::vector<std::string> keys;
-  l.type = lightType(n, keys);
-  n.expectObject(keys);
+  l.type = lightType(n["type"]);
+  n.expectObject(lightKeys(l.type));
   readPlacement(n, l);
   readShining(n, l);
   return l;
@@ -81,9 +92,7 @@ Light readLight(const Node& n) {
 Fog::Mode fogMode(const Node& n) {
   static const std::map<std::string, Fog::Mode> modes = {
       {"linear", Fog::Mode::Linear}, {"exp", Fog::Mode::Exp}, {"exp2", Fog::Mode::Exp2}};
-  const auto it = modes.find(n.string());
-  if (it == modes.end()) n.fail("\"linear\", \"exp\" or \"exp2\"");
-  return it->second;
+  return namedValue(n, modes, "\"linear\", \"exp\" or \"exp2\"");
 }
 
 /// The camera (node n) looks somewhere, with an up vector across its view.
@@ -94,13 +103,32 @@ void checkView(const Node& n, const Camera& c) {
     n["up"].failWith("an up vector not parallel to the view direction", "a parallel one");
 }
 
+/// The camera's "eye", "target" and "up" keys are there.
+void checkCameraKeys(const Node& n) {
+  for (const char* key : {"eye", "target", "up"})
+    if (!n.has(key)) n.failWith(std::string("a \"") + key + "\" key", "none");
+}
+
+/// The fog's colour, linear range (start, end) and density, where given.
+void readFogShape(const Node& n, Fog& f) {
+  if (n.has("color")) f.color = n["color"].color();
+  if (n.has("start")) f.start = n["start"].number();
+  if (n.has("end")) f.end = n["end"].number();
+  if (n.has("density")) f.density = n["density"].number(0, HUGE_VAL, "[0, inf)");
+}
+
+/// Linear fog (node n) has a depth range: end != start.
+void checkFogRange(const Node& n, const Fog& f) {
+  if (f.mode == Fog::Mode::Linear && f.end == f.start)
+    n.failWith("linear fog with end != start", "end = start = " + std::to_string(f.end));
+}
+
 }  // namespace
 
 Camera readCamera(const Node& n) {
   n.expectObject({"eye", "target", "up", "fov_y_deg"});
   Camera c;
-  for (const char* key : {"eye", "target", "up"})
-    if (!n.has(key)) n.failWith(std::string("a \"") + key + "\" key", "none");
+  checkCameraKeys(n);
   c.eye = n["eye"].vec3();
   c.target = n["target"].vec3();
   c.up = n["up"].vec3();
@@ -127,12 +155,8 @@ Fog readFog(const Node& n) {
   Fog f;
   if (!n.has("mode")) n.failWith("a \"mode\" key", "none");
   f.mode = fogMode(n["mode"]);
-  if (n.has("color")) f.color = n["color"].color();
-  if (n.has("start")) f.start = n["start"].number();
-  if (n.has("end")) f.end = n["end"].number();
-  if (n.has("density")) f.density = n["density"].number(0, HUGE_VAL, "[0, inf)");
-  if (f.mode == Fog::Mode::Linear && f.end == f.start)
-    n.failWith("linear fog with end != start", "end = start = " + std::to_string(f.end));
+  readFogShape(n, f);
+  checkFogRange(n, f);
   return f;
 }
 
