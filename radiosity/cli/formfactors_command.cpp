@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <numeric>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -27,11 +28,11 @@ struct FormFactorOptions {
   SolverBlock flags;
 };
 
-/// The front-side elements of one surface.
-std::vector<int> frontElementsOf(const PatchMesh& mesh, int surface) {
+/// The elements of one surface: both sides, or only its front side when `frontOnly`.
+std::vector<int> elementsOf(const PatchMesh& mesh, int surface, bool frontOnly) {
   std::vector<int> elements;
   for (int e = 0; e < mesh.elementCount(); ++e)
-    if (mesh.surface(e) == surface && mesh.side(e) == 0) elements.push_back(e);
+    if (mesh.surface(e) == surface && (!frontOnly || mesh.side(e) == 0)) elements.push_back(e);
   return elements;
 }
 
@@ -49,7 +50,7 @@ glm::dvec3 areaCentroid(const PatchMesh& mesh, const std::vector<int>& elements)
 /// The point of a surface to look from: the centroid of its element nearest to its area
 /// centroid (so it lies on the surface even when the surface is not convex).
 int centralElement(const PatchMesh& mesh, int surface) {
-  const std::vector<int> front = frontElementsOf(mesh, surface);
+  const std::vector<int> front = elementsOf(mesh, surface, true);
   const glm::dvec3 c = areaCentroid(mesh, front);
   int best = -1;
   double bestDist = HUGE_VAL;
@@ -70,14 +71,6 @@ struct Viewpoint {
   uint64_t shooter = 0;
   int fromSurface = -1;
 };
-
-/// The elements of one surface (both sides).
-std::vector<int> elementsOf(const PatchMesh& mesh, int surface) {
-  std::vector<int> elements;
-  for (int k = 0; k < mesh.elementCount(); ++k)
-    if (mesh.surface(k) == surface) elements.push_back(k);
-  return elements;
-}
 
 /// The index of the surface named `name` (--from); an error lists the names there are.
 int surfaceNamed(const Scene& scene, const std::string& name) {
@@ -100,7 +93,7 @@ Viewpoint surfaceViewpoint(const Scene& scene, const PatchMesh& mesh, const std:
   view.x = mesh.centroid(e);
   view.n = mesh.normal(e);
   view.shooter = uint64_t(e);
-  view.excluded = elementsOf(mesh, view.fromSurface);
+  view.excluded = elementsOf(mesh, view.fromSurface, false);
   return view;
 }
 
@@ -114,11 +107,9 @@ void checkPointAndNormal(const std::vector<double>& point, const glm::dvec3& nor
 
 /// The point and normal given by --point and --normal.
 Viewpoint pointViewpoint(const FormFactorOptions& o) {
+  checkPointAndNormal(o.point, vec3(o.normal));
   Viewpoint view;
-  view.x = vec3(o.point);
-  view.n = vec3(o.normal);
-  checkPointAndNormal(o.point, view.n);
-  view.n = glm::normalize(view.n);
+  view.x = vec3(o.point), view.n = glm::normalize(vec3(o.normal));
   return view;
 }
 
@@ -128,9 +119,7 @@ double aloneFactor(const HemicubeGeometry& alone, const Settings& settings, cons
   Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
   FormFactors ffAlone;
   single.compute(view.x, view.n, rotation, ffAlone);
-  double fAlone = 0;
-  for (double f : ffAlone.factors) fAlone += f;
-  return fAlone;
+  return std::accumulate(ffAlone.factors.begin(), ffAlone.factors.end(), 0.0);
 }
 
 /// Whether the surface is occluded (its factor alone differs) and, if not, the exact factor beside.

@@ -96,13 +96,9 @@ std::vector<pathtrace::SurfacePoint> pointsFor(const ReferenceOptions& o, const 
 
 /// The path tracer's options from the command's.
 pathtrace::TraceOptions traceOptions(const ReferenceOptions& o) {
-  pathtrace::TraceOptions options;
-  options.seed = o.seed;
-  options.paths = o.paths;
-  options.relativeError = o.relativeError;
-  options.minPaths = o.minPaths;
-  options.maxPaths = std::max(o.maxPaths, o.minPaths);
-  return options;
+  // seed, paths, relative error, fewest and most paths (never below the fewest), every
+  // hardware thread, no progress
+  return {o.seed, o.paths, o.relativeError, o.minPaths, std::max(o.maxPaths, o.minPaths), 0, nullptr};
 }
 
 /// How the estimates came out: the fewest and most paths per point, and the points that

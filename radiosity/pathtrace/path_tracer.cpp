@@ -115,7 +115,7 @@ void PathTracer::addBounceEmission(const glm::dvec3& x, const glm::dvec3& nx, co
                                    const TraceHit& hit, const glm::dvec3& T, glm::dvec3& B) const {
   const double lightPdf = scene_.lightPdf(hit.triangle);
   if (!(lightPdf > 0)) return;
-  const TraceTriangle& t = scene_.triangles()[size_t(hit.triangle)];
+  const TraceTriangle& t = scene_.triangle(hit.triangle);
   // The bounce's estimate of π·L is the exitance E where it lands.
   const glm::dvec3 d = hit.point - x;
   const double r2 = glm::dot(d, d), cy = std::abs(glm::dot(t.normal, d)), r = std::sqrt(r2);
@@ -134,7 +134,7 @@ bool PathTracer::bounce(glm::dvec3& x, glm::dvec3& nx, glm::dvec3& T, Random& rn
   if (hit.triangle < 0) return false;  // escaped
   if (!scene_.reflects(hit)) return false;  // the back of a one-sided surface absorbs
   addBounceEmission(x, nx, w, hit, T, B);
-  T *= scene_.material(scene_.triangles()[size_t(hit.triangle)].surface).reflectance;
+  T *= scene_.material(scene_.triangle(hit.triangle).surface).reflectance;
   x = hit.point;
   nx = scene_.sideNormal(hit);
   return true;

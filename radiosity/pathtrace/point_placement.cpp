@@ -197,7 +197,7 @@ void placeByArea(const TraceScene& scene, int count, Random& rng, std::vector<Su
   for (int i = 0; i < count; ++i)
     for (int attempt = 0; attempt < kTries; ++attempt) {
       const AreaEntry& e = table.entries[pick(table.cdf, stratified(i, count, attempt, rng) * table.total)];
-      const TraceTriangle& t = scene.triangles()[size_t(e.triangle)];
+      const TraceTriangle& t = scene.triangle(e.triangle);
       const glm::dvec3 q = scene.pointOn(e.triangle, rng.next(), rng.next());
       if (accept(scene, q, e.sign * t.normal, t.surface, rng, out, "area")) break;
     }
@@ -250,7 +250,7 @@ bool locatePoint(const TraceScene& scene, SurfacePoint& point, double tolerance)
   const TraceHit hit = scene.intersect(from, -n, 2 * reach);
   if (hit.triangle < 0) return false;
   if (!scene.reflects(hit)) return false;  // the back of a one-sided surface
-  point.surface = scene.triangles()[size_t(hit.triangle)].surface;
+  point.surface = scene.triangle(hit.triangle).surface;
   point.position = scene.toScene(hit.point);
   point.normal = scene.sideNormal(hit);
   return true;

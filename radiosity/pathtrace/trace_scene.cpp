@@ -49,7 +49,7 @@ struct HoleFilterData {
 bool hitInHole(const RTCFilterFunctionNArguments* args, unsigned i) {
   const auto* data = static_cast<const HoleFilterData*>(args->geometryUserPtr);
   const int t = data->triangles[RTCHitN_primID(args->hit, args->N, i)];
-  const TraceTriangle& tri = data->scene->triangles()[size_t(t)];
+  const TraceTriangle& tri = data->scene->triangle(t);
   const double u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
   return data->scene->inHole(t, (1 - u - v) * tri.a + u * tri.b + v * tri.c);
 }
@@ -84,12 +84,8 @@ RTCGeometry triangleGeometry(RTCDevice device, const std::vector<TraceTriangle>&
 
 /// A single-precision Embree ray from o along d up to tFar.
 RTCRay makeRay(const glm::dvec3& o, const glm::dvec3& d, double tFar) {
-  RTCRay r;
-  r.org_x = float(o.x), r.org_y = float(o.y), r.org_z = float(o.z);
-  r.dir_x = float(d.x), r.dir_y = float(d.y), r.dir_z = float(d.z);
-  r.tnear = 0.f, r.tfar = float(tFar), r.time = 0.f;
-  r.mask = ~0u, r.id = 0, r.flags = 0;
-  return r;
+  // origin, tnear, direction, time, tfar, mask, id, flags
+  return {float(o.x), float(o.y), float(o.z), 0.f, float(d.x), float(d.y), float(d.z), 0.f, float(tFar), ~0u, 0, 0};
 }
 
 /// Installs the hole filter on a geometry of triangles from polygons with holes.

@@ -56,6 +56,7 @@ class TraceScene {
 
   const Scene& scene() const { return scene_; }
   const std::vector<TraceTriangle>& triangles() const { return triangles_; }
+  const TraceTriangle& triangle(int t) const { return triangles_[size_t(t)]; }
   const Material& material(int surface) const;
   bool twoSided(int surface) const { return scene_.surfaces[size_t(surface)].twoSided; }
 
@@ -67,12 +68,11 @@ class TraceScene {
   /// Whether the side a ray hit reflects: its front, or either side of a two-sided surface
   /// (the back of a one-sided surface absorbs).
   bool reflects(const TraceHit& hit) const {
-    return hit.front || twoSided(triangles_[size_t(hit.triangle)].surface);
+    return hit.front || twoSided(triangle(hit.triangle).surface);
   }
   /// The unit normal of the side a ray hit.
   glm::dvec3 sideNormal(const TraceHit& hit) const {
-    const glm::dvec3& n = triangles_[size_t(hit.triangle)].normal;
-    return hit.front ? n : -n;
+    return hit.front ? triangle(hit.triangle).normal : -triangle(hit.triangle).normal;
   }
   /// Whether point p (on triangle t's plane) lies in one of its polygon's holes.
   bool inHole(int t, const glm::dvec3& p) const;
