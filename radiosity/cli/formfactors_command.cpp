@@ -209,14 +209,9 @@ void printJson(const nlohmann::ordered_json& out) {
   if (!std::cout) throw std::runtime_error("standard output: write error");
 }
 
-void runFormFactors(const FormFactorOptions& o) {
-  Scene scene = loadScene(o.scene);
-  Settings settings = resolveSettings(scene, o.flags);
-  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
-  printWarnings(scene.warnings);
-  printWarnings(mesh.warnings);
-  const Viewpoint view = o.from.empty() ? pointViewpoint(o) : surfaceViewpoint(scene, mesh, o.from);
-
+/// The factors from the view as JSON: the summary, then a row for every other surface.
+nlohmann::ordered_json factorsJson(const Scene& scene, const PatchMesh& mesh, const Settings& settings,
+                                   const Viewpoint& view) {
   // The full scene, then each surface alone: equal factors mean nothing occludes it.
   double rotation = hemicubeRotation(settings.seed, view.shooter, 0);
   const FormFactors ff = fullFactors(scene, mesh, settings, view, rotation);
@@ -225,7 +220,17 @@ void runFormFactors(const FormFactorOptions& o) {
   for (size_t s = 0; s < scene.surfaces.size(); ++s)
     if (int(s) != view.fromSurface)
       out["surfaces"].push_back(surfaceRow(scene, mesh, settings, view, rotation, s, perSurface[s]));
-  printJson(out);
+  return out;
+}
+
+void runFormFactors(const FormFactorOptions& o) {
+  Scene scene = loadScene(o.scene);
+  Settings settings = resolveSettings(scene, o.flags);
+  PatchMesh mesh = buildPatchMesh(scene, settings.mesh());
+  printWarnings(scene.warnings);
+  printWarnings(mesh.warnings);
+  const Viewpoint view = o.from.empty() ? pointViewpoint(o) : surfaceViewpoint(scene, mesh, o.from);
+  printJson(factorsJson(scene, mesh, settings, view));
 }
 
 /// --from, or --point with --normal: where to look from, one of the two required.
