@@ -1,6 +1,8 @@
 #pragma once
-// Numbers as text: the two ways files and messages write them.
+// Numbers as text: the two ways files and messages write them, and a whole word read as one.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -18,6 +20,13 @@ inline std::string exactNumberText(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
+}
+
+/// A finite number filling the whole word into v, or false.
+inline bool finiteNumber(const std::string& word, double& v) {
+  char* end = nullptr;
+  v = std::strtod(word.c_str(), &end);
+  return !word.empty() && *end == '\0' && std::isfinite(v);
 }
 
 }  // namespace rad

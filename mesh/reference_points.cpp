@@ -47,10 +47,8 @@ bool splitColumns(const std::string& line, std::vector<std::string>& out) {
 
 /// The field as a finite number (`column` names it in messages).
 double number(const std::string& text, const std::string& where, const char* column) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw inputError(where + ": " + column, "a finite number", "'" + text + "'");
+  double v;
+  if (!finiteNumber(text, v)) throw inputError(where + ": " + column, "a finite number", "'" + text + "'");
   return v;
 }
 
