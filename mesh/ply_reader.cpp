@@ -202,12 +202,17 @@ void readHeaderLines(const std::string& bytes, size_t& at, Header& h, const std:
   if (!st.format || !st.ended) throw inputError(path, "a PLY header with a format line and end_header", "none");
 }
 
+/// The first header line is the magic "ply"; `at` ends after it.
+void checkMagicLine(const std::string& bytes, size_t& at, const std::string& path) {
+  std::string line;
+  if (!headerLine(bytes, at, line, path) || line != "ply") throw inputError(path, "a PLY file", "no 'ply' magic line");
+}
+
 /// The header, checked line by line and against the file's size.
 Header parseHeader(const std::string& bytes, const std::string& path) {
   Header h;
   size_t at = 0;
-  std::string line;
-  if (!headerLine(bytes, at, line, path) || line != "ply") throw inputError(path, "a PLY file", "no 'ply' magic line");
+  checkMagicLine(bytes, at, path);
   readHeaderLines(bytes, at, h, path);
   h.body = at;
   checkCounts(h, bytes.size(), path);
@@ -323,17 +328,19 @@ std::vector<int> readFaceIndices(BodyReader& body, const Property& p, size_t n, 
   return idx;
 }
 
+/// Reads past the n items of a list that holds no face.
+void skipList(BodyReader& body, const Property& p, size_t n, const std::string& where) {
+  for (size_t k = 0; k < n; ++k) body.scalar(p.type, where);
+}
+
 /// Reads list property p of a record of e: a face's vertex indices into out.faces; any
 /// other list is read past.
 void readList(BodyReader& body, const Element& e, const Property& p, uint64_t vertices,
               const std::string& where, PlyPolygons& out) {
   const bool face = isFaceList(e, p);
   const size_t n = listLength(body, p, where, face);
-  if (face) {
-    out.faces.push_back(readFaceIndices(body, p, n, vertices, where));
-    return;
-  }
-  for (size_t k = 0; k < n; ++k) body.scalar(p.type, where);
+  if (face) out.faces.push_back(readFaceIndices(body, p, n, vertices, where));
+  else skipList(body, p, n, where);
 }
 
 /// The columns of element e's scalar properties (none unless e holds vertices or faces),

@@ -221,14 +221,17 @@ void readSurfaces(const PlyMesh& ply, ResultFile& r) {
   for (size_t f = 0; f < r.faces.size(); ++f) r.faceSurface[f] = surfaceIndex(*surface, f, r.path);
 }
 
+/// Face f's radiosity, finite and >= 0 in each channel.
+glm::dvec3 faceRadiosity(const RequiredColumns& cols, size_t f, const std::string& path) {
+  const glm::dvec3 b = row(cols.faceB, f);
+  for (int k = 0; k < 3; ++k) checkRadiosity(b, k, path + ": face " + std::to_string(f));
+  return b;
+}
+
 /// The elements' own radiosities (finite, >= 0).
 void readFaceRadiosity(const RequiredColumns& cols, ResultFile& r) {
   r.faceRadiosity.resize(r.faces.size());
-  for (size_t f = 0; f < r.faces.size(); ++f) {
-    const glm::dvec3 b = row(cols.faceB, f);
-    for (int k = 0; k < 3; ++k) checkRadiosity(b, k, r.path + ": face " + std::to_string(f));
-    r.faceRadiosity[f] = b;
-  }
+  for (size_t f = 0; f < r.faces.size(); ++f) r.faceRadiosity[f] = faceRadiosity(cols, f, r.path);
 }
 
 /// Parses "camera eye X Y Z target X Y Z up X Y Z fov_y_deg F"; false when the text does not

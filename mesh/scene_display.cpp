@@ -76,10 +76,15 @@ void readShining(const Node& n, Light& l) {
   if (l.type == Light::Type::Spot) readSpotCone(n, l);
 }
 
-/// One light: its type, then the keys that type accepts.
-Light readLight(const Node& n) {
+/// A light is an object with a "type" key.
+void checkLightObject(const Node& n) {
   if (!n.value().is_object()) n.fail("an object");
   if (!n.has("type")) n.failWith("a \"type\" key", "none");
+}
+
+/// One light: its type, then the keys that type accepts.
+Light readLight(const Node& n) {
+  checkLightObject(n);
   Light l;
   l.type = lightType(n["type"]);
   n.expectObject(lightKeys(l.type));
