@@ -65,15 +65,19 @@ void checkCornerIndex(const std::string& word, long long vertices, const std::st
                                 std::to_string(vertices) + ", counting back)", "'" + first + "'");
 }
 
+/// A face has at most kMaxObjFaceVertices corners: tinyobjloader counts them in one byte.
+void checkCornerCount(int corners, const std::string& where) {
+  if (corners > kMaxObjFaceVertices)
+    throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
+                     std::to_string(corners));
+}
+
 /// The rest of a face (line, point) statement: indices of the `vertices` defined so far
 /// (1-based, or negative counting back), at most kMaxObjFaceVertices of them.
 void checkFaceIndices(std::istringstream& words, long long vertices, const std::string& where) {
   int corners = 0;
   for (std::string word; words >> word; ++corners) checkCornerIndex(word, vertices, where);
-  // tinyobjloader counts a face's corners in one byte.
-  if (corners > kMaxObjFaceVertices)
-    throw inputError(where, "faces of at most " + std::to_string(kMaxObjFaceVertices) + " vertices",
-                     std::to_string(corners));
+  checkCornerCount(corners, where);
 }
 
 /// One statement (`key`, then the rest of its line in `words`) of an OBJ or, if `material`, an
@@ -160,11 +164,16 @@ size_t objVertex(const tinyobj::index_t& index, size_t vertices, const std::stri
   return size_t(vi);
 }
 
-/// The OBJ text parsed by tinyobjloader, with the MTL files it names; polygons stay polygons.
-void parseObj(const std::string& obj, const std::string& path, tinyobj::ObjReader& reader) {
+/// tinyobjloader's settings: polygons stay polygons.
+tinyobj::ObjReaderConfig objConfig() {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // polygons stay polygons: the mesher triangulates them well
-  if (!reader.ParseFromString(obj, materialText(obj, path), config)) {
+  return config;
+}
+
+/// The OBJ text parsed by tinyobjloader, with the MTL files it names; polygons stay polygons.
+void parseObj(const std::string& obj, const std::string& path, tinyobj::ObjReader& reader) {
+  if (!reader.ParseFromString(obj, materialText(obj, path), objConfig())) {
     std::string why = trimmed(reader.Error());
     throw inputError(path, "a Wavefront OBJ file", "a parse error: " + why);
   }

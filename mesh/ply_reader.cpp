@@ -144,14 +144,19 @@ Element elementOf(std::istringstream& words, const std::string& line, std::strin
   return e;
 }
 
+/// A vertex element has at most INT32_MAX records (`count` as written).
+void checkVertexCount(const Element& e, const std::string& count, const std::string& path) {
+  if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
+    throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
+}
+
 /// An element line: a new name and a count (at most INT32_MAX vertices).
 void addElement(Header& h, std::istringstream& words, const std::string& line,
                 std::set<std::string>& names, const std::string& path) {
   std::string count;
   const Element e = elementOf(words, line, count, path);
   if (!names.insert(e.name).second) throw inputError(path, "each element once", "'" + e.name + "' twice");
-  if (e.name == "vertex" && e.count > uint64_t(INT32_MAX))
-    throw inputError(path + ": element vertex", "at most 2147483647 vertices", count);
+  checkVertexCount(e, count, path);
   h.elements.push_back(e);
 }
 

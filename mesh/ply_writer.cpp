@@ -76,10 +76,15 @@ void writeBody(std::ostream& out, const PlyMesh& mesh, size_t nv) {
   for (size_t f = 0; f < mesh.faces.size(); ++f) writeTriangle(out, mesh, f);
 }
 
+/// The vertices: the length of the vertex columns (0 without any).
+size_t vertexCount(const PlyMesh& mesh) {
+  return mesh.vertex.empty() ? 0 : mesh.vertex[0].values.size();
+}
+
 }  // namespace
 
 void writePly(const std::string& path, const PlyMesh& mesh) {
-  size_t nv = mesh.vertex.empty() ? 0 : mesh.vertex[0].values.size();
+  const size_t nv = vertexCount(mesh);
   checkColumns(mesh.vertex, nv);
   checkColumns(mesh.face, mesh.faces.size());
   writeFileAtomically(path, [&](std::ostream& out) {

@@ -116,6 +116,14 @@ std::string commaList(const std::vector<std::string>& words) {
   return list;
 }
 
+/// The error for a PLY without the `missing` columns of a result.
+InputError notAResult(const std::string& path, const std::vector<std::string>& missing) {
+  return inputError(path,
+                    "a radiosity result (vertex and face properties radiosity_r, radiosity_g, "
+                    "radiosity_b, as `radiosity solve` writes)",
+                    "a PLY without " + commaList(missing));
+}
+
 /// Finds the required columns; throws InputError listing every missing one.
 RequiredColumns requiredColumns(const PlyMesh& ply, const std::string& path) {
   ColumnLookup lookup;
@@ -124,10 +132,7 @@ RequiredColumns requiredColumns(const PlyMesh& ply, const std::string& path) {
   lookup.three(r.vertexB, ply.vertex, kChannels, "vertex");
   lookup.three(r.faceB, ply.face, kChannels, "face");
   if (lookup.missing.empty()) return r;
-  throw inputError(path,
-                   "a radiosity result (vertex and face properties radiosity_r, radiosity_g, "
-                   "radiosity_b, as `radiosity solve` writes)",
-                   "a PLY without " + commaList(lookup.missing));
+  throw notAResult(path, lookup.missing);
 }
 
 /// The three columns `names` when all are there, else nullptr in each.
@@ -297,16 +302,21 @@ void checkSizes(const ResultFile& r) {
   RAD_CHECK(r.faceSurface.empty() || r.faceSurface.size() == nf);
 }
 
-}  // namespace
-
-void writeResultFile(const std::string& path, const ResultFile& result) {
-  checkSizes(result);
+/// The result as a PLY mesh: comments, vertex columns, triangles and face columns.
+PlyMesh resultPly(const ResultFile& result) {
   PlyMesh ply;
   ply.comments = comments(result);
   ply.vertex = vertexColumns(result);
   ply.faces = result.faces;
   ply.face = faceColumns(result);
-  writePly(path, ply);
+  return ply;
+}
+
+}  // namespace
+
+void writeResultFile(const std::string& path, const ResultFile& result) {
+  checkSizes(result);
+  writePly(path, resultPly(result));
 }
 
 ResultFile readResultFile(const std::string& path) {

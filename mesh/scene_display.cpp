@@ -44,13 +44,16 @@ Node required(const Node& n, const char* key) {
   return n[key];
 }
 
+/// A light's direction (node d): non-zero.
+glm::dvec3 readDirection(const Node& d) {
+  const glm::dvec3 direction = d.vec3();
+  if (glm::length(direction) == 0) d.fail("a non-zero direction");
+  return direction;
+}
+
 /// The light's position and direction, as its type needs them.
 void readPlacement(const Node& n, Light& l) {
-  if (l.type != Light::Type::Point) {
-    Node d = required(n, "direction");
-    l.direction = d.vec3();
-    if (glm::length(l.direction) == 0) d.fail("a non-zero direction");
-  }
+  if (l.type != Light::Type::Point) l.direction = readDirection(required(n, "direction"));
   if (l.type != Light::Type::Directional) l.position = required(n, "position").vec3();
 }
 

@@ -20,12 +20,15 @@ void applyPreset(const Node& p, Material& m) {
   m.reflectance = glm::dvec3(preset->diffuse);
 }
 
+/// The diffuse colour (node d), which is the reflectance too.
+void readDiffuse(const Node& d, Material& m) {
+  m.diffuse = d.color();
+  m.reflectance = glm::dvec3(m.diffuse);
+}
+
 /// The local model's keys given directly; a diffuse colour is the reflectance too.
 void readLocalModel(const Node& n, Material& m) {
-  if (n.has("diffuse")) {
-    m.diffuse = n["diffuse"].color();
-    m.reflectance = glm::dvec3(m.diffuse);
-  }
+  if (n.has("diffuse")) readDiffuse(n["diffuse"], m);
   if (n.has("ambient")) m.ambient = n["ambient"].color();
   if (n.has("specular")) m.specular = n["specular"].color();
   if (n.has("shininess")) m.shininess = n["shininess"].number(0, 128, "[0, 128]");
@@ -97,6 +100,12 @@ std::vector<std::string> materialNames(const Scene& scene) {
   return names;
 }
 
+/// An MTL material's name in the scene: "<surface>/<MTL name>", or the MTL name alone for a
+/// surface without a name.
+std::string mtlMaterialName(const Node& s, const MeshFileGroup& group) {
+  return s.has("name") ? s["name"].string() + "/" + group.material : group.material;
+}
+
 }  // namespace
 
 void readMaterials(const Node& n, Scene& scene) {
@@ -114,7 +123,7 @@ int materialIndex(const Node& n, const Scene& scene) {
 
 int addMtlMaterial(const Node& s, const MeshFileGroup& group, Scene& scene) {
   Material m;
-  m.name = s.has("name") ? s["name"].string() + "/" + group.material : group.material;
+  m.name = mtlMaterialName(s, group);
   m.reflectance = mtlReflectance(s, group);
   m.emission = mtlExitance(s, group);
   m.diffuse = m.ambient = glm::dvec4(m.reflectance, 1.0);
