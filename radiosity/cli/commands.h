@@ -19,6 +19,23 @@ struct Command {
   std::function<void()> run;
 };
 
+/// A subcommand being registered: its CLI app and its options, which the flags write and the
+/// run reads (shared with the callback, so they outlive the parse).
+template <class Options>
+struct Subcommand {
+  std::shared_ptr<Options> o = std::make_shared<Options>();
+  CLI::App* app;
+
+  Subcommand(CLI::App& parent, const std::string& name, const std::string& description)
+      : app(parent.add_subcommand(name, description)) {}
+  /// The command, running `run` with the parsed options.
+  Command runs(void (*run)(const Options&)) const {
+    return {app, [o = o, run] { run(*o); }};
+  }
+};
+
+/// The required scene file argument.
+void addScene(CLI::App& app, std::string& scene);
 /// The scene file argument and the required -o/--output file.
 void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, const std::string& outputHelp);
 /// Flags shared by every command that meshes: one name each, as in the scene's solver block.

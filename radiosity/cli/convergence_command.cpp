@@ -374,17 +374,16 @@ void addCurveFlags(CLI::App& sub, ConvergenceOptions& o) {
 }  // namespace
 
 Command addConvergenceCommand(CLI::App& app) {
-  auto o = std::make_shared<ConvergenceOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "convergence", "Plot the true error (against a reference from 'radiosity reference') against run "
-                     "time (SVG, and CSV): progressive refinement, with the ambient term, with "
-                     "overshooting, Jacobi and Gauss-Seidel on one uniform mesh, and a ladder of "
-                     "settings solved as 'radiosity solve' does, with its front");
-  addSceneAndOutput(*sub, o->scene, o->output, "Plot (SVG)");
-  addCurveFlags(*sub, *o);
-  addMeshFlags(*sub, o->flags);
-  addSolverFlags(*sub, o->flags);
-  return {sub, [o] { runConvergence(*o); }};
+  Subcommand<ConvergenceOptions> c(app, "convergence",
+                                   "Plot the true error (against a reference from 'radiosity reference') against run "
+                                   "time (SVG, and CSV): progressive refinement, with the ambient term, with "
+                                   "overshooting, Jacobi and Gauss-Seidel on one uniform mesh, and a ladder of "
+                                   "settings solved as 'radiosity solve' does, with its front");
+  addSceneAndOutput(*c.app, c.o->scene, c.o->output, "Plot (SVG)");
+  addCurveFlags(*c.app, *c.o);
+  addMeshFlags(*c.app, c.o->flags);
+  addSolverFlags(*c.app, c.o->flags);
+  return c.runs(runConvergence);
 }
 
 }  // namespace rad::cli

@@ -249,15 +249,14 @@ void addViewFlags(CLI::App& sub, FormFactorOptions& o) {
 }  // namespace
 
 Command addFormFactorsCommand(CLI::App& app) {
-  auto o = std::make_shared<FormFactorOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "formfactors", "Print, as JSON, the hemicube form factor from a point to every surface and, "
-                     "where nothing occludes the surface, the exact factor and the relative difference");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  addViewFlags(*sub, *o);
-  addSolverFlags(*sub, o->flags);
-  addMeshFlags(*sub, o->flags);
-  return {sub, [o] { runFormFactors(*o); }};
+  Subcommand<FormFactorOptions> c(app, "formfactors",
+                                  "Print, as JSON, the hemicube form factor from a point to every surface and, "
+                                  "where nothing occludes the surface, the exact factor and the relative difference");
+  addScene(*c.app, c.o->scene);
+  addViewFlags(*c.app, *c.o);
+  addSolverFlags(*c.app, c.o->flags);
+  addMeshFlags(*c.app, c.o->flags);
+  return c.runs(runFormFactors);
 }
 
 }  // namespace rad::cli

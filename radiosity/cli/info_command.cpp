@@ -160,12 +160,12 @@ void runInfo(const InfoOptions& o) {
 }  // namespace
 
 Command addInfoCommand(CLI::App& app) {
-  auto o = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Print the scene's surfaces, materials, emitters, "
-                                              "areas and patch and element counts");
-  sub->add_option("scene", o->scene, "Scene file (JSON, version 1)")->required();
-  addMeshFlags(*sub, o->flags);
-  return {sub, [o] { runInfo(*o); }};
+  Subcommand<InfoOptions> c(app, "info",
+                            "Print the scene's surfaces, materials, emitters, "
+                            "areas and patch and element counts");
+  addScene(*c.app, c.o->scene);
+  addMeshFlags(*c.app, c.o->flags);
+  return c.runs(runInfo);
 }
 
 }  // namespace rad::cli

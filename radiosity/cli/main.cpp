@@ -12,8 +12,12 @@
 
 namespace rad::cli {
 
-void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, const std::string& outputHelp) {
+void addScene(CLI::App& app, std::string& scene) {
   app.add_option("scene", scene, "Scene file (JSON, version 1)")->required();
+}
+
+void addSceneAndOutput(CLI::App& app, std::string& scene, std::string& output, const std::string& outputHelp) {
+  addScene(app, scene);
   app.add_option("-o,--output", output, outputHelp)->required();
 }
 

@@ -37,13 +37,12 @@ void runMesh(const MeshOptions& o) {
 }  // namespace
 
 Command addMeshCommand(CLI::App& app) {
-  auto o = std::make_shared<MeshOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "mesh", "Mesh the scene into patches and elements and write it as a PLY file (per face: "
-              "surface index, patch index, side)");
-  addSceneAndOutput(*sub, o->scene, o->output, "Output PLY file");
-  addMeshFlags(*sub, o->flags);
-  return {sub, [o] { runMesh(*o); }};
+  Subcommand<MeshOptions> c(app, "mesh",
+                            "Mesh the scene into patches and elements and write it as a PLY file (per face: "
+                            "surface index, patch index, side)");
+  addSceneAndOutput(*c.app, c.o->scene, c.o->output, "Output PLY file");
+  addMeshFlags(*c.app, c.o->flags);
+  return c.runs(runMesh);
 }
 
 }  // namespace rad::cli

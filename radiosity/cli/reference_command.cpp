@@ -237,15 +237,14 @@ void addPathFlags(CLI::App& sub, ReferenceOptions& o) {
 }  // namespace
 
 Command addReferenceCommand(CLI::App& app) {
-  auto o = std::make_shared<ReferenceOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "reference", "Radiosity at surface points by Monte Carlo path tracing, independent of the "
-                   "hemicube solver, with standard errors (CSV): the truth to measure solves against");
-  addSceneAndOutput(*sub, o->scene, o->output, "Reference file (CSV)");
-  addPointFlags(*sub, *o);
-  addPathFlags(*sub, *o);
-  sub->add_option("--seed", o->seed, "Seed of the random streams (default 1)");
-  return {sub, [o] { runReference(*o); }};
+  Subcommand<ReferenceOptions> c(app, "reference",
+                                 "Radiosity at surface points by Monte Carlo path tracing, independent of the "
+                                 "hemicube solver, with standard errors (CSV): the truth to measure solves against");
+  addSceneAndOutput(*c.app, c.o->scene, c.o->output, "Reference file (CSV)");
+  addPointFlags(*c.app, *c.o);
+  addPathFlags(*c.app, *c.o);
+  c.app->add_option("--seed", c.o->seed, "Seed of the random streams (default 1)");
+  return c.runs(runReference);
 }
 
 }  // namespace rad::cli

@@ -194,20 +194,19 @@ void addMeasureFlags(CLI::App& sub, SolveOptions& o) {
 }  // namespace
 
 Command addSolveCommand(CLI::App& app) {
-  auto o = std::make_shared<SolveOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "solve", "Solve the scene by progressive refinement and write the result mesh (vertex "
-               "radiosities as colours) and, optionally, a JSON report");
-  addSceneAndOutput(*sub, o->scene, o->output, "Result mesh (binary PLY)");
-  sub->add_option("--report", o->report, "Report file (JSON): settings, counts, energy ledger, history");
-  addMeshFlags(*sub, o->flags);
-  addSolverFlags(*sub, o->flags);
-  addStopFlags(*sub, o->flags);
-  addMeasureFlags(*sub, *o);
-  sub->add_option("--exposure", o->flags.exposure,
+  Subcommand<SolveOptions> c(app, "solve",
+                             "Solve the scene by progressive refinement and write the result mesh (vertex "
+                             "radiosities as colours) and, optionally, a JSON report");
+  addSceneAndOutput(*c.app, c.o->scene, c.o->output, "Result mesh (binary PLY)");
+  c.app->add_option("--report", c.o->report, "Report file (JSON): settings, counts, energy ledger, history");
+  addMeshFlags(*c.app, c.o->flags);
+  addSolverFlags(*c.app, c.o->flags);
+  addStopFlags(*c.app, c.o->flags);
+  addMeasureFlags(*c.app, *c.o);
+  c.app->add_option("--exposure", c.o->flags.exposure,
                   "Display exposure K (solver.exposure; default: automatic, see README)")
       ->check(CLI::PositiveNumber);
-  return {sub, [o] { runSolve(*o); }};
+  return c.runs(runSolve);
 }
 
 }  // namespace rad::cli
