@@ -90,9 +90,10 @@ struct SolverBlock {
   std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
   std::optional<double> factorCacheMb, proximitySamples;
   std::optional<int> hemicubeResolution, emitterHemicubeResolution, emitterSamples, shooterSamples;
+  std::optional<int> gatherResolution;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;
-  std::optional<bool> cutContacts, adaptive, vertexDirect;
+  std::optional<bool> cutContacts, adaptive, vertexDirect, finalGather;
   std::optional<double> minElementEdge, contrast;
   std::optional<long> maxElements;
 };

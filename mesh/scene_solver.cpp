@@ -46,6 +46,7 @@ void readSolverNumbers(const Node& n, SolverBlock& b) {
   optionalBool(n, "cut_contacts", b.cutContacts);
   optionalBool(n, "adaptive", b.adaptive);
   optionalBool(n, "vertex_direct", b.vertexDirect);
+  optionalBool(n, "final_gather", b.finalGather);
   optionalNumber(n, "min_element_edge", 1e-300, HUGE_VAL, "(0, inf)", b.minElementEdge);
   optionalNumber(n, "contrast", 1e-6, 1, "[1e-6, 1]", b.contrast);
   optionalNumber(n, "proximity_samples", 0, 65536, "[0, 65536]", b.proximitySamples);
@@ -60,6 +61,7 @@ void readSolverCounts(const Node& n, SolverBlock& b) {
   optionalWhole(n, "max_shots", 1, 1e15, "[1, 1e15]", b.maxShots);
   optionalResolution(n, "hemicube_resolution", b.hemicubeResolution);
   optionalResolution(n, "emitter_hemicube_resolution", b.emitterHemicubeResolution);
+  optionalResolution(n, "gather_resolution", b.gatherResolution);
   optionalWhole(n, "seed", 0, 4294967295.0, "[0, 2^32)", b.seed);
 }
 
@@ -70,7 +72,8 @@ void readSolver(const Node& n, SolverBlock& b) {
                   "emitter_hemicube_resolution", "tolerance",
                   "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                   "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts",
-                  "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements"});
+                  "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements",
+                  "final_gather", "gather_resolution"});
   readSolverNumbers(n, b);
   readSolverCounts(n, b);
 }

@@ -197,8 +197,8 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
 
 DirectLight::~DirectLight() = default;
 
-DirectLight::Probe DirectLight::probeAt(const PatchMesh& mesh, TriMesh::VertexHandle v) const {
-  Probe probe;
+DirectLight::Probe vertexProbe(const PatchMesh& mesh, TriMesh::VertexHandle v) {
+  DirectLight::Probe probe;
   probe.point = PatchMesh::toGlm(mesh.mesh.point(v));
   probe.normal = PatchMesh::toGlm(mesh.mesh.normal(v));
   int faces = 0;
@@ -214,13 +214,10 @@ DirectLight::Probe DirectLight::probeAt(const PatchMesh& mesh, TriMesh::VertexHa
   return probe;
 }
 
-glm::dvec3 DirectLight::rayOrigin(const Probe& probe) const {
-  // Everything is evaluated a little off the surface and inwards: the light a point on a
-  // surface's edge shows is the limit from inside the surface (a floor point at the foot of a
-  // glowing wall sees half its hemisphere filled by it, not the wall edge-on).
-  double offset = kRayOffset * sceneSize_;
+glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
+  double offset = kRayOffset * sceneSize;
   if (probe.size > 0)
-    offset = std::clamp(kRayOffsetOfElement * probe.size, kMinRayOffset * sceneSize_, offset);
+    offset = std::clamp(kRayOffsetOfElement * probe.size, kMinRayOffset * sceneSize, offset);
   const double inwards = glm::length(probe.inwards);
   return probe.point + probe.normal * offset +
          (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
@@ -266,7 +263,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   out.visible.assign(size_t((samples_ + 63) / 64), 0);
   out.weight.assign(lights_.size(), 0.0f);
   if (probe.rho == glm::dvec3(0.0)) return out;  // black: nothing to show
-  const glm::dvec3 p = rayOrigin(probe);
+  const glm::dvec3 p = offSurface(probe, sceneSize_);
   for (size_t t = 0; t < lights_.size(); ++t) addLightAt(probe, p, t, out, raysCast);
   return out;
 }
@@ -302,7 +299,7 @@ void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLi
         continue;
       }
     }
-    probes.push_back(probeAt(mesh, TriMesh::VertexHandle(int(k))));
+    probes.push_back(vertexProbe(mesh, TriMesh::VertexHandle(int(k))));
     at.push_back(k);
   }
   std::vector<VertexLight> found = lightAt(probes);

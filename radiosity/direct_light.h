@@ -84,8 +84,6 @@ class DirectLight {
   void addLight(const PatchMesh& mesh, int p, int count);
   /// Adds a sample point on a light with unit normal `normal`.
   void addSample(const glm::dvec3& at, const glm::dvec3& normal);
-  /// Where the probe's rays start: a little off the surface and inwards.
-  glm::dvec3 rayOrigin(const Probe& probe) const;
   /// Whether sample j is visible from `origin` (given by the probe, or by a ray).
   bool sampleVisible(const Probe& probe, const glm::dvec3& origin, int j, long& raysCast) const;
   /// Adds light t's share seen from p (the probe's ray origin) to `out`.
@@ -93,7 +91,6 @@ class DirectLight {
                   long& raysCast) const;
   /// The direct light at one probe, counting the rays it casts.
   VertexLight compute(const Probe& probe, long& raysCast) const;
-  Probe probeAt(const PatchMesh& mesh, TriMesh::VertexHandle v) const;
 
   struct Rays;
   std::unique_ptr<Rays> rays_impl_;
@@ -106,5 +103,14 @@ class DirectLight {
   bool enabled_ = false;
   long rays_ = 0;
 };
+
+/// The probe of mesh vertex v: its point, normal and reflectance, towards the centroid of its
+/// elements, sized by its shortest edge.
+DirectLight::Probe vertexProbe(const PatchMesh& mesh, TriMesh::VertexHandle v);
+
+/// Where light at a probe is evaluated: a little off the surface and inwards. A point on a
+/// surface's edge shows the limit from inside the surface (a floor point at the foot of a
+/// glowing wall sees half its hemisphere filled by it, not the wall edge-on).
+glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize);
 
 }  // namespace rad

@@ -102,6 +102,17 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
   writeResultFile(path, result);
 }
 
+void writeVertexResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& vertexB,
+                       const std::vector<glm::dvec3>& B, double exposure, const Camera& camera) {
+  ResultFile result = resultGeometry(mesh);
+  result.vertexRadiosity = vertexB;
+  result.vertexColour = displayColours(vertexB, exposure);
+  result.faceRadiosity = B;
+  result.camera = camera;
+  result.exposure = exposure;
+  writeResultFile(path, result);
+}
+
 /// Result positions are stored as float: points agree to this times the scene size.
 constexpr double kSameGeometry = 1e-5;
 

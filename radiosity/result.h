@@ -32,6 +32,11 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
                  const glm::dvec3& ambient, double exposure, const Camera& camera,
                  const VertexDirect* direct = nullptr);
 
+/// Writes the result file with the vertex radiosities given (the final gather's) and the
+/// elements' `B`; the display colours from the vertex values.
+void writeVertexResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& vertexB,
+                       const std::vector<glm::dvec3>& B, double exposure, const Camera& camera);
+
 /// The element radiosities of an earlier result of the same scene and mesh settings, for
 /// comparison. Throws InputError when the file is not such a result (element count, geometry
 /// or the face radiosity properties differ).

@@ -38,6 +38,7 @@ void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge, s.maxElementEdge / kDefaultMinElementRatio);
   s.contrast = pick(flags.contrast, file.contrast, kDefaultContrast);
   s.vertexDirect = pick(flags.vertexDirect, file.vertexDirect, true);
+  s.finalGather = pick(flags.finalGather, file.finalGather, true);
   s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
 }
 
@@ -46,6 +47,7 @@ void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& fl
   s.emitterHemicubeResolution =
       pick(flags.emitterHemicubeResolution, file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
   s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
+  s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution, kDefaultGatherResolution);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, kDefaultEmitterSamples);

@@ -7,6 +7,7 @@
 #include "mesh/mesh_settings.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
+#include "radiosity/final_gather.h"
 
 namespace rad {
 
@@ -68,12 +69,16 @@ struct Settings {
   double contrast = kDefaultContrast;  ///< display units
   /// Show direct light computed at the vertices by rays (radiosity/direct_light.h).
   bool vertexDirect = true;
+  /// Gather the light shown at every vertex through its own hemicube after the solve, the
+  /// vertex system iterated to convergence (radiosity/final_gather.h).
+  bool finalGather = true;
+  int gatherResolution = kDefaultGatherResolution;
   /// Meshing is refused beyond this many elements (estimated before meshing), and adaptive
   /// refinement stops there.
   long maxElements = kDefaultMaxElements;
 
   MeshSettings mesh() const {
-    return {maxElementEdge, maxPatchEdge, cutContacts, contactGrading(adaptive)};
+    return {maxElementEdge, maxPatchEdge, cutContacts, contactGrading(adaptive, finalGather)};
   }
 };
 

@@ -1,5 +1,7 @@
 #include "radiosity/solve.h"
 
+#include <cstdio>
+
 #include <glm/common.hpp>
 
 #include "mesh/color.h"
@@ -83,6 +85,23 @@ void lightVertices(MeshedScene& s) {
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
+/// The final gather if the settings ask for it and it fits the budget: each vertex's hemicube
+/// draws every element, so its work grows as vertices × elements.
+void decideGather(MeshedScene& s) {
+  if (!s.settings.finalGather) return;
+  const double drawn = (s.base ? s.base.get() : &s.mesh)->elementCount();
+  const double work = double(s.mesh.mesh.n_vertices()) * drawn;
+  s.gather = work <= kMaxGatherWork;
+  if (s.gather) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "final gather skipped: %zu vertices each drawing %.0f elements is more than the %.0e "
+                "vertex-element pairs it may cost (about ten seconds); the progressive solution is shown "
+                "at the vertices (coarser elements gather: raise solver.max_element_edge)",
+                s.mesh.mesh.n_vertices(), drawn, kMaxGatherWork);
+  s.mesh.warnings.push_back(text);
+}
+
 /// Sets every negative channel to 0; the number of elements that had one.
 int clampNegative(std::vector<glm::dvec3>& B) {
   int clamped = 0;
@@ -112,6 +131,7 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
   // A mesh built again has the same repairs first: only what follows is new.
   const size_t passed = s.mesh.warnings.size();
   lightVertices(s);
+  decideGather(s);
   passOn(s.mesh.warnings, passed, options);
   return s;
 }
@@ -138,12 +158,13 @@ RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)
     : RadiositySolve(scene, solverOptions(scene.settings), workers) {}
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, const SolverOptions& options, int workers)
-    : scene_(scene), factors_(hemicubeFactors(scene, workers)), solver_(scene.mesh, *factors_, options) {}
+    : scene_(scene), workers_(workers), factors_(hemicubeFactors(scene, workers)),
+      solver_(scene.mesh, *factors_, options) {}
 
 // Overshooting can leave a slightly negative channel mid-solve; a result never carries one.
 // With direct light from rays at the vertices, the emission not yet shot is already shown,
 // so the ambient term leaves it out.
-Solution RadiositySolve::bake() const {
+Solution RadiositySolve::bake(bool gather) const {
   Solution b;
   b.converged = solver_.stopReason() == ProgressiveSolver::Stop::Tolerance;
   const bool raysShowEmission = bool(scene_.direct);
@@ -151,7 +172,23 @@ Solution RadiositySolve::bake() const {
   b.B = solver_.radiosity();
   b.clamped = clampNegative(b.B);
   if (scene_.direct) b.direct = VertexDirect{solver_.direct(), scene_.direct->radiosity(), scene_.base.get()};
+  if (gather && scene_.gather) gatherAtVertices(b);
   return b;
+}
+
+void RadiositySolve::gatherAtVertices(Solution& b) const {
+  const PatchMesh& mesh = scene_.mesh;
+  std::vector<glm::dvec3> start = shownAtVertices(scene_, b);
+  const std::vector<glm::dvec3> emission = vertexEmission(mesh);
+  for (size_t v = 0; v < start.size(); ++v) start[v] = glm::max(start[v] - emission[v], glm::dvec3(0.0));
+  GatherOptions options;
+  options.resolution = scene_.settings.gatherResolution;
+  options.seed = scene_.settings.seed;
+  options.workers = workers_;
+  const std::vector<glm::dvec3>* direct = b.direct ? &b.direct->vertex : nullptr;
+  b.gathered = finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather);
+  b.B = elementMeans(mesh, *b.gathered);
+  b.ambient = glm::dvec3(0.0);
 }
 
 Solution solveRadiosity(const MeshedScene& scene) {
@@ -162,6 +199,7 @@ Solution solveRadiosity(const MeshedScene& scene) {
 }
 
 std::vector<glm::dvec3> shownAtVertices(const MeshedScene& scene, const Solution& solution) {
+  if (solution.gathered) return *solution.gathered;
   return shownVertexRadiosity(scene.mesh, solution.B, solution.ambient,
                               solution.direct ? &*solution.direct : nullptr);
 }
@@ -173,6 +211,9 @@ double exposureOf(const MeshedScene& scene, const Solution& solution) {
 Camera cameraOf(const Scene& scene) { return scene.camera ? *scene.camera : defaultCamera(scene); }
 
 void writeSolution(const std::string& path, const MeshedScene& scene, const Solution& solution) {
+  if (solution.gathered)
+    return writeVertexResult(path, scene.mesh, *solution.gathered, solution.B, exposureOf(scene, solution),
+                             cameraOf(scene.scene));
   writeResult(path, scene.mesh, solution.B, solution.ambient, exposureOf(scene, solution),
               cameraOf(scene.scene), solution.direct ? &*solution.direct : nullptr);
 }

@@ -21,6 +21,7 @@
 #include "mesh/scene.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/direct_light.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/progressive_solver.h"
 #include "radiosity/settings.h"
 #include "radiosity/vertex_radiosity.h"
@@ -40,6 +41,9 @@ struct MeshedScene {
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;            ///< what adaptive refinement did
   std::unique_ptr<PatchMesh> base;   ///< the mesh before refinement (null if nothing was refined)
+  /// Whether the solution is gathered at the vertices: settings.finalGather, unless the
+  /// gather would cost more than kMaxGatherWork (said in a warning).
+  bool gather = false;
 };
 
 struct MeshingOptions {
@@ -68,6 +72,10 @@ struct Solution {
   bool converged = false;      ///< stopped by the tolerance
   /// The direct light the vertices show (none without rays): the display equation's D.
   std::optional<VertexDirect> direct;
+  /// After the final gather: what each vertex shows (B then holds each element's mean of its
+  /// corners, the ambient term is 0: the gather solves the vertex system to convergence).
+  std::optional<std::vector<glm::dvec3>> gathered;
+  GatherStats gather;
 };
 
 /// What Gouraud shading shows at each vertex of the scene's mesh (the display equation,
@@ -86,11 +94,16 @@ class RadiositySolve {
   bool step() { return solver_.step(); }
   const ProgressiveSolver& solver() const { return solver_; }
   /// The current solution, baked (negative channels clamped, the ambient term while
-  /// unconverged, the vertices' direct light).
-  Solution bake() const;
+  /// unconverged, the vertices' direct light), and gathered at the vertices if the settings
+  /// say so and `gather` allows.
+  Solution bake(bool gather = true) const;
 
  private:
+  /// The final gather over a baked solution.
+  void gatherAtVertices(Solution& b) const;
+
   const MeshedScene& scene_;
+  int workers_;
   std::unique_ptr<HemicubeFactors> factors_;
   ProgressiveSolver solver_;
 };

@@ -54,8 +54,10 @@ Command addReferenceCommand(CLI::App& app);
 /// warnings printed first and the mesher's as they arise.
 MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmitter);
 
-/// The true error of what a viewer would show of the solve's current solution.
-ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth);
+/// The true error of what a viewer would show of the solve's current solution: as the
+/// progressive solver has it, or after the final gather (`gather`, if the settings have one).
+ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth,
+                          bool gather = false);
 
 /// A library message with each setting it names (solver.NAME) followed by its flag.
 std::string withFlags(const std::string& message);

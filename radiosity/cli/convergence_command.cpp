@@ -210,6 +210,9 @@ std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
   const Settings defaults = resolveSettings(scene, user);
   const double edge = defaults.maxElementEdge;
   return {rung("defaults", user, [](SolverBlock&) {}),
+          rung("final gather off", user, [](SolverBlock& f) { f.finalGather = false; }),
+          rung("gather R/2", user, [&](SolverBlock& f) { f.gatherResolution = defaults.gatherResolution / 2; }),
+          rung("gather Rx2", user, [&](SolverBlock& f) { f.gatherResolution = defaults.gatherResolution * 2; }),
           rung("adaptive off", user, [](SolverBlock& f) { f.adaptive = false; }),
           rung("elements x1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge * 1.6; }),
           rung("elements /1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge / 1.6; }),
@@ -225,6 +228,15 @@ void printRung(const Rung& rung, const MeshedScene& meshed, double meshing, cons
   std::fprintf(stderr, "  %-20s %6d elements, meshing %.2f s, %.2f s in all, true error %.2f %%\n",
                rung.name.c_str(), meshed.mesh.elementCount(), meshing, c.series.points.back().first,
                100 * c.series.points.back().second);
+}
+
+/// The final gather's point: at the time the solve and the gather took together.
+void addGathered(Curve& c, const RadiositySolve& solve, const MeshedScene& meshed, const TrueError& truth,
+                 double meshing) {
+  const Solution gathered = solve.bake();
+  const double seconds = gathered.gather.hemicubeSeconds + gathered.gather.solveSeconds;
+  c.add(meshing + solve.solver().seconds() + seconds, truth.measure(shownAtVertices(meshed, gathered)).rms,
+        solve.solver().shots());
 }
 
 /// The rung's flags, stopped at kLadderTolerance unless the user gave a tolerance.
@@ -244,6 +256,7 @@ void solveRecording(RadiositySolve& solve, const MeshedScene& meshed, const True
   while (solve.step())
     if (rowDue(solver.shots(), next)) record();
   record();
+  if (meshed.gather) addGathered(c, solve, meshed, truth, meshing);
 }
 
 /// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays

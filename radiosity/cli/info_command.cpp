@@ -122,14 +122,23 @@ void printAdaptive(const Settings& settings, const AdaptiveStats& adaptive) {
               settings.minElementEdge, settings.contrast, adaptive.seconds);
 }
 
+/// What the final gather will do.
+std::string gatherLine(const MeshedScene& meshed) {
+  if (!meshed.gather) return meshed.settings.finalGather ? "skipped (over its budget)" : "off";
+  const int drawn = (meshed.base ? meshed.base.get() : &meshed.mesh)->elementCount();
+  return "at " + std::to_string(meshed.mesh.mesh.n_vertices()) + " vertices over " + std::to_string(drawn) +
+         " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution);
+}
+
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
 void printMeshing(const MeshedScene& meshed, double seconds) {
-  const auto& [scene, settings, mesh, direct, adaptive, base] = meshed;
+  const auto& [scene, settings, mesh, direct, adaptive, base, gather] = meshed;
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",
               mesh.stats.minAngleDeg, mesh.stats.maxEdge, mesh.stats.maxPatchDiameter);
   if (settings.adaptive) printAdaptive(settings, adaptive);
   std::printf("direct      %s\n", directLine(direct.get()).c_str());
+  std::printf("gather      %s\n", gatherLine(meshed).c_str());
   std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds, mesh.stats.rounds);
 }
 

@@ -73,6 +73,9 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--vertex-direct", flags.vertexDirect,
                  "Show direct light computed at the vertices by rays to points on the emitters, "
                  "true or false (solver.vertex_direct; default true)");
+  app.add_option("--final-gather", flags.finalGather,
+                 "Gather the light shown at every vertex through its own hemicube after the solve, "
+                 "true or false (solver.final_gather; default true)");
 }
 
 /// The hemicube resolutions and the seed of their rotations.
@@ -83,6 +86,9 @@ void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
   addResolution(app, "--emitter-hemicube", flags.emitterHemicubeResolution,
                 "Hemicube resolution for emitting patches, even "
                 "(solver.emitter_hemicube_resolution; default 256)");
+  addResolution(app, "--gather-hemicube", flags.gatherResolution,
+                "Hemicube resolution of the final gather at the vertices, even "
+                "(solver.gather_resolution; default 32)");
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
 }
 
@@ -118,8 +124,9 @@ MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmi
   return meshScene(std::move(scene), settings, {requireEmitter, [](const std::string& w) { printWarnings({withFlags(w)}); }});
 }
 
-ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth) {
-  return truth.measure(shownAtVertices(scene, solve.bake()));
+ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth,
+                          bool gather) {
+  return truth.measure(shownAtVertices(scene, solve.bake(gather)));
 }
 
 namespace {

@@ -87,7 +87,7 @@ void printProgress(const ProgressiveSolver& solver, double t) {
 }
 
 /// Shoots to a stop condition, keeping the history and showing progress on a terminal; the
-/// last row measures what is baked.
+/// rows measure the progressive solution (the report's error block, what the final gather made).
 Json shoot(RadiositySolve& solve, const MeshedScene& scene, const Measures& measures) {
   const ProgressiveSolver& solver = solve.solver();
   Json history = Json::array({historyRow(solve, scene, measures)});
@@ -136,8 +136,10 @@ Measures measuresFor(const SolveOptions& o, const MeshedScene& scene, std::vecto
 void addMeasures(Json& report, const SolveOptions& o, const Measures& m, const MeshedScene& scene,
                  const RadiositySolve& solve, const Solution& solution) {
   if (m.truth) {
-    const ErrorSummary e = m.truth->measure(shownAtVertices(scene, solution));
+    const std::vector<glm::dvec3> shown = shownAtVertices(scene, solution);
+    const ErrorSummary e = m.truth->measure(shown);
     report["error"] = errorBlock(e, *m.truth, o.reference);
+    report["error"]["at_points"] = pointsTable(*m.truth, m.truth->shown(shown));
     printTrueError(e, *m.truth, o.reference);
   }
   if (!m.fixedPoint.empty()) {

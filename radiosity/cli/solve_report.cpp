@@ -25,6 +25,8 @@ void addRefinementSettings(Json& s, const Settings& settings) {
   s["min_element_edge"] = settings.minElementEdge;
   s["contrast"] = settings.contrast;
   s["vertex_direct"] = settings.vertexDirect;
+  s["final_gather"] = settings.finalGather;
+  s["gather_resolution"] = settings.gatherResolution;
   s["max_elements"] = settings.maxElements;
 }
 
@@ -147,9 +149,19 @@ void addRunFields(Json& report, const ProgressiveSolver& solver) {
 /// How the solution is shown: exposure, the ambient term and the clamped elements.
 void addDisplayFields(Json& report, const MeshedScene& scene, const Solution& solution) {
   report["exposure"] = exposureOf(scene, solution);
-  report["ambient_applied"] = !solution.converged;
+  report["ambient_applied"] = solution.ambient != glm::dvec3(0.0);
   report["ambient"] = rgb(solution.ambient);
   report["negative_clamped"] = solution.clamped;
+}
+
+/// What the final gather did (null without one).
+Json gatherBlock(const Solution& solution) {
+  if (!solution.gathered) return Json();
+  const GatherStats& g = solution.gather;
+  return {{"points", g.points},           {"factors", g.factors},
+          {"iterated", g.iterated},       {"iterations", g.iterations},
+          {"residual", g.residual},       {"hemicube_seconds", g.hemicubeSeconds},
+          {"solve_seconds", g.solveSeconds}};
 }
 
 }  // namespace
@@ -183,6 +195,16 @@ Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string
   return j;
 }
 
+Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown) {
+  Json table = Json::array();
+  for (size_t i = 0; i < shown.size(); ++i) {
+    const ReferencePoint& p = truth.points()[i];
+    table.push_back({{"surface", p.surface}, {"tag", p.tag}, {"position", rgb(p.position)},
+                     {"reference", rgb(p.B)}, {"standard_error", rgb(p.standardError)}, {"shown", rgb(shown[i])}});
+  }
+  return table;
+}
+
 Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const Solution& solution) {
   const ProgressiveSolver& solver = solve.solver();
   Json report;
@@ -193,6 +215,7 @@ Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const So
   report["counts"] = countsBlock(scene, solver);
   addRunFields(report, solver);
   addDisplayFields(report, scene, solution);
+  report["final_gather"] = gatherBlock(solution);
   report["camera"] = cameraBlock(cameraOf(scene.scene));
   report["energy"] = energyBlock(solver.ledger());
   return report;

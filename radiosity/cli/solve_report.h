@@ -17,6 +17,8 @@ const char* stopName(ProgressiveSolver::Stop s);
 
 /// The report's "error" block: the definition, the reference and the summary.
 Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string& file);
+/// Every reference point with what is shown there.
+Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown);
 
 /// Everything the report says of a finished solve, but the history and the error.
 Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const Solution& solution);

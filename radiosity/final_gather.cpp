@@ -1,0 +1,260 @@
+#include "radiosity/final_gather.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "mesh/color.h"
+#include "mesh/parallel.h"
+#include "radiosity/direct_light.h"
+#include "radiosity/hemicube.h"
+
+namespace rad {
+
+namespace {
+
+using Field = std::vector<glm::dvec3>;
+using Clock = std::chrono::steady_clock;
+
+/// The gather's hemicubes turn by their own stream of rotations, apart from the shooters'.
+constexpr uint64_t kGatherStream = 0x6761746865720000ull;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// One vertex's form factors to the elements it sees.
+struct Row {
+  std::vector<int> elements;
+  std::vector<float> factors;
+};
+
+/// The form factors of every vertex (rows), or of none once they outgrow the memory budget.
+struct Rows {
+  std::vector<Row> rows;
+  bool kept = true;
+};
+
+/// Σⱼ F_vj·y_j over one row.
+glm::dvec3 gatherRow(const Row& row, const Field& y) {
+  glm::dvec3 sum(0.0);
+  for (size_t k = 0; k < row.elements.size(); ++k) sum += double(row.factors[k]) * y[size_t(row.elements[k])];
+  return sum;
+}
+
+/// The vertices whose light needs gathering: those with a reflecting surface.
+std::vector<bool> gatheringVertices(const Field& rho) {
+  std::vector<bool> out(rho.size());
+  for (size_t v = 0; v < rho.size(); ++v) out[v] = rho[v] != glm::dvec3(0.0);
+  return out;
+}
+
+/// The hemicube's factors from vertex v (off its surface and inwards, as the rays start).
+void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, Hemicube& cube, FormFactors& out) {
+  const DirectLight::Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(v));
+  cube.compute(offSurface(probe, sceneSize), probe.normal, hemicubeRotation(seed, kGatherStream + uint64_t(v), 0), out);
+}
+
+/// Renders every gathering vertex's hemicube; each row is used once at once (`once`, the
+/// single gather over y) and kept while the budget allows.
+Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<bool>& gathering, const Field& y,
+                Field& once, const GatherOptions& options, GatherStats& stats) {
+  const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(drawn);
+  const int workers = workerCount(options.workers);
+  std::vector<std::unique_ptr<Hemicube>> cubes;
+  std::vector<FormFactors> scratch(static_cast<size_t>(workers));
+  for (int w = 0; w < workers; ++w) cubes.push_back(std::make_unique<Hemicube>(geometry, options.resolution, sceneSize));
+  Rows out;
+  out.rows.resize(gathering.size());
+  once.assign(gathering.size(), glm::dvec3(0.0));
+  std::atomic<long> factors{0};
+  const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
+  parallelFor(gathering.size(), workers, [&](size_t v, int worker) {
+    if (!gathering[v]) return;
+    FormFactors& f = scratch[size_t(worker)];
+    factorsAt(mesh, sceneSize, options.seed, int(v), *cubes[size_t(worker)], f);
+    Row& row = out.rows[v];
+    row.elements = f.elements;
+    row.factors.assign(f.factors.begin(), f.factors.end());
+    once[v] = gatherRow(row, y);
+    if ((factors += long(f.elements.size())) > budget) row = Row();
+  }, 16);
+  stats.factors = factors;
+  out.kept = factors <= budget;
+  if (!out.kept) out.rows.clear();
+  return out;
+}
+
+/// The value of each element the hemicubes draw as a weighted sum of vertex values: the
+/// mean of its corners, or, drawing the mesh as built before refinement, the area-weighted
+/// mean of its parts' corner means.
+struct Interpolation {
+  std::vector<std::vector<std::pair<int, double>>> terms;  // per drawn element
+
+  Field apply(const Field& x) const {
+    Field y(terms.size(), glm::dvec3(0.0));
+    for (size_t j = 0; j < terms.size(); ++j)
+      for (const auto& [v, w] : terms[j]) y[j] += w * x[size_t(v)];
+    return y;
+  }
+};
+
+Interpolation interpolation(const PatchMesh& mesh, const PatchMesh* base) {
+  Interpolation out;
+  out.terms.resize(size_t(base ? base->elementCount() : mesh.elementCount()));
+  for (auto f : mesh.mesh.faces()) {
+    const int e = f.idx(), j = base ? mesh.base(e) : e;
+    const double w = base ? mesh.area(e) / (3 * base->area(j)) : 1.0 / 3;
+    for (auto v : mesh.mesh.fv_range(f)) out.terms[size_t(j)].emplace_back(v.idx(), w);
+  }
+  return out;
+}
+
+/// The vertex system x = d + ρ·F·W·x as an operator: A·x = x − ρ·F·W·x.
+struct VertexSystem {
+  const Rows& rows;
+  const Interpolation& W;
+  const Field& rho;
+  int workers;
+
+  Field apply(const Field& x) const {
+    const Field y = W.apply(x);
+    Field out(x.size());
+    parallelFor(x.size(), workers, [&](size_t v, int) { out[v] = x[v] - rho[v] * gatherRow(rows.rows[v], y); }, 256);
+    return out;
+  }
+};
+
+glm::dvec3 dot(const Field& a, const Field& b) {
+  glm::dvec3 sum(0.0);
+  for (size_t i = 0; i < a.size(); ++i) sum += a[i] * b[i];
+  return sum;
+}
+
+/// a / b per channel, 0 where b is 0 (a channel that has converged or carries nothing).
+glm::dvec3 safeDivide(const glm::dvec3& a, const glm::dvec3& b) {
+  glm::dvec3 out(0.0);
+  for (int c = 0; c < 3; ++c) out[c] = b[c] != 0 ? a[c] / b[c] : 0.0;
+  return out;
+}
+
+/// a + s·b, per channel.
+Field axpy(const Field& a, const glm::dvec3& s, const Field& b) {
+  Field out(a.size());
+  for (size_t i = 0; i < a.size(); ++i) out[i] = a[i] + s * b[i];
+  return out;
+}
+
+/// The largest channel's |r| / |b|.
+double relativeResidual(const Field& r, const glm::dvec3& bNorm2) {
+  const glm::dvec3 ratio = safeDivide(dot(r, r), bNorm2);
+  return std::sqrt(std::max({ratio.x, ratio.y, ratio.z}));
+}
+
+/// BiCGSTAB (van der Vorst 1992) on the three channels at once, each with its own scalars;
+/// x holds the start and gets the solution.
+void solveSystem(const VertexSystem& A, const Field& b, Field& x, const GatherOptions& options, GatherStats& stats) {
+  const glm::dvec3 bNorm2 = dot(b, b);
+  Field r = axpy(b, glm::dvec3(-1.0), A.apply(x));
+  const Field rHat = r;
+  Field p(x.size(), glm::dvec3(0.0)), v(x.size(), glm::dvec3(0.0));
+  glm::dvec3 rhoOld(1.0), alpha(1.0), omega(1.0);
+  stats.residual = relativeResidual(r, bNorm2);
+  for (stats.iterations = 0; stats.iterations < options.maxIterations && stats.residual > options.tolerance;
+       ++stats.iterations) {
+    const glm::dvec3 rho = dot(rHat, r);
+    const glm::dvec3 beta = safeDivide(rho, rhoOld) * safeDivide(alpha, omega);
+    for (size_t i = 0; i < p.size(); ++i) p[i] = r[i] + beta * (p[i] - omega * v[i]);
+    v = A.apply(p);
+    alpha = safeDivide(rho, dot(rHat, v));
+    const Field s = axpy(r, -alpha, v);
+    const Field t = A.apply(s);
+    omega = safeDivide(dot(t, s), dot(t, t));
+    for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * p[i] + omega * s[i];
+    r = axpy(s, -omega, t);
+    rhoOld = rho;
+    stats.residual = relativeResidual(r, bNorm2);
+  }
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> vertexEmission(const PatchMesh& mesh) {
+  Field out(mesh.mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto v : mesh.mesh.vertices())
+    for (auto f : mesh.mesh.vf_range(v)) {
+      out[size_t(v.idx())] = mesh.emission(f.idx());
+      break;
+    }
+  return out;
+}
+
+std::vector<glm::dvec3> vertexReflectance(const PatchMesh& mesh) {
+  Field out(mesh.mesh.n_vertices(), glm::dvec3(0.0));
+  for (auto v : mesh.mesh.vertices())
+    for (auto f : mesh.mesh.vf_range(v)) {
+      out[size_t(v.idx())] = mesh.reflectance(f.idx());
+      break;
+    }
+  return out;
+}
+
+std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<glm::dvec3>& atVertices) {
+  Field out;
+  out.reserve(size_t(mesh.elementCount()));
+  for (auto f : mesh.mesh.faces()) {
+    glm::dvec3 sum(0.0);
+    for (auto v : mesh.mesh.fv_range(f)) sum += atVertices[size_t(v.idx())];
+    out.push_back(sum / 3.0);
+  }
+  return out;
+}
+
+std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
+                                    const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
+                                    const GatherOptions& options, GatherStats* statsOut) {
+  GatherStats stats;
+  const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
+  const std::vector<bool> gathering = gatheringVertices(rho);
+  stats.points = int(std::count(gathering.begin(), gathering.end(), true));
+  // What an element sends that the gather takes: its reflected light, and its emission too
+  // unless the rays' direct light already counts it.
+  const PatchMesh& drawn = base ? *base : mesh;
+  const Interpolation W = interpolation(mesh, base);
+  Field y = W.apply(start);
+  if (!direct)
+    for (int e = 0; e < drawn.elementCount(); ++e) y[size_t(e)] += drawn.emission(e);
+  Field once;
+  auto clock = Clock::now();
+  const Rows rows = gatherRows(mesh, drawn, sceneSize, gathering, y, once, options, stats);
+  stats.hemicubeSeconds = secondsSince(clock);
+  clock = Clock::now();
+  Field x(rho.size()), d(rho.size());
+  for (size_t v = 0; v < x.size(); ++v) {
+    // With rays, d is their direct light; without, the emitters' share of the single gather.
+    x[v] = (direct ? (*direct)[v] : glm::dvec3(0.0)) + rho[v] * once[v];
+    d[v] = direct ? (*direct)[v] : glm::dvec3(0.0);
+  }
+  if (rows.kept) {
+    if (!direct) {
+      Field emitted(size_t(drawn.elementCount()));
+      for (int e = 0; e < drawn.elementCount(); ++e) emitted[size_t(e)] = drawn.emission(e);
+      for (size_t v = 0; v < d.size(); ++v)
+        if (gathering[v]) d[v] = rho[v] * gatherRow(rows.rows[v], emitted);
+    }
+    solveSystem(VertexSystem{rows, W, rho, workerCount(options.workers)}, d, x, options, stats);
+    stats.iterated = true;
+  }
+  stats.solveSeconds = secondsSince(clock);
+  for (size_t v = 0; v < x.size(); ++v) x[v] = glm::max(x[v], glm::dvec3(0.0)) + emission[v];
+  if (statsOut) *statsOut = stats;
+  return x;
+}
+
+}  // namespace rad
