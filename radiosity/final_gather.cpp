@@ -183,6 +183,36 @@ void solveSystem(const VertexSystem& A, const Field& b, Field& x, const GatherOp
   }
 }
 
+/// What each drawn element sends that the gather takes: its reflected light `reflected`, and
+/// its emission too when no rays count it (`withEmission`).
+Field sent(const PatchMesh& drawn, Field reflected, bool withEmission) {
+  if (withEmission)
+    for (int e = 0; e < drawn.elementCount(); ++e) reflected[size_t(e)] += drawn.emission(e);
+  return reflected;
+}
+
+/// The rays' direct light per vertex, or zeros without rays.
+Field directOrZero(const Field* direct, size_t vertices) {
+  return direct ? *direct : Field(vertices, glm::dvec3(0.0));
+}
+
+/// a + ρ·b per vertex.
+Field plus(Field a, const Field& rho, const Field& b) {
+  for (size_t v = 0; v < a.size(); ++v) a[v] += rho[v] * b[v];
+  return a;
+}
+
+/// Without rays, the vertex system's d: what each vertex reflects of the emitters' emission
+/// (ρ·F·E), from its kept row.
+Field emittersGathered(const PatchMesh& drawn, const Rows& rows, const Field& rho, const std::vector<bool>& gathering) {
+  Field emitted(size_t(drawn.elementCount()));
+  for (int e = 0; e < drawn.elementCount(); ++e) emitted[size_t(e)] = drawn.emission(e);
+  Field d(rho.size(), glm::dvec3(0.0));
+  for (size_t v = 0; v < d.size(); ++v)
+    if (gathering[v]) d[v] = rho[v] * gatherRow(rows.rows[v], emitted);
+  return d;
+}
+
 }  // namespace
 
 std::vector<glm::dvec3> vertexEmission(const PatchMesh& mesh) {
@@ -223,31 +253,17 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
   const std::vector<bool> gathering = gatheringVertices(rho);
   stats.points = int(std::count(gathering.begin(), gathering.end(), true));
-  // What an element sends that the gather takes: its reflected light, and its emission too
-  // unless the rays' direct light already counts it.
   const PatchMesh& drawn = base ? *base : mesh;
   const Interpolation W = interpolation(mesh, base);
-  Field y = W.apply(start);
-  if (!direct)
-    for (int e = 0; e < drawn.elementCount(); ++e) y[size_t(e)] += drawn.emission(e);
   Field once;
   auto clock = Clock::now();
-  const Rows rows = gatherRows(mesh, drawn, sceneSize, gathering, y, once, options, stats);
+  const Rows rows = gatherRows(mesh, drawn, sceneSize, gathering, sent(drawn, W.apply(start), !direct), once,
+                               options, stats);
   stats.hemicubeSeconds = secondsSince(clock);
   clock = Clock::now();
-  Field x(rho.size()), d(rho.size());
-  for (size_t v = 0; v < x.size(); ++v) {
-    // With rays, d is their direct light; without, the emitters' share of the single gather.
-    x[v] = (direct ? (*direct)[v] : glm::dvec3(0.0)) + rho[v] * once[v];
-    d[v] = direct ? (*direct)[v] : glm::dvec3(0.0);
-  }
+  Field x = plus(directOrZero(direct, rho.size()), rho, once);
   if (rows.kept) {
-    if (!direct) {
-      Field emitted(size_t(drawn.elementCount()));
-      for (int e = 0; e < drawn.elementCount(); ++e) emitted[size_t(e)] = drawn.emission(e);
-      for (size_t v = 0; v < d.size(); ++v)
-        if (gathering[v]) d[v] = rho[v] * gatherRow(rows.rows[v], emitted);
-    }
+    const Field d = direct ? *direct : emittersGathered(drawn, rows, rho, gathering);
     solveSystem(VertexSystem{rows, W, rho, workerCount(options.workers)}, d, x, options, stats);
     stats.iterated = true;
   }
