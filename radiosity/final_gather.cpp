@@ -213,26 +213,27 @@ Field emittersGathered(const PatchMesh& drawn, const Rows& rows, const Field& rh
   return d;
 }
 
-}  // namespace
-
-std::vector<glm::dvec3> vertexEmission(const PatchMesh& mesh) {
+/// A property of each vertex's surface, from its first element (vertices belong to one side of
+/// one surface); zero for an isolated vertex.
+template <class Property>
+Field ofVertexSurface(const PatchMesh& mesh, Property property) {
   Field out(mesh.mesh.n_vertices(), glm::dvec3(0.0));
   for (auto v : mesh.mesh.vertices())
     for (auto f : mesh.mesh.vf_range(v)) {
-      out[size_t(v.idx())] = mesh.emission(f.idx());
+      out[size_t(v.idx())] = property(f.idx());
       break;
     }
   return out;
 }
 
+}  // namespace
+
+std::vector<glm::dvec3> vertexEmission(const PatchMesh& mesh) {
+  return ofVertexSurface(mesh, [&](int e) { return mesh.emission(e); });
+}
+
 std::vector<glm::dvec3> vertexReflectance(const PatchMesh& mesh) {
-  Field out(mesh.mesh.n_vertices(), glm::dvec3(0.0));
-  for (auto v : mesh.mesh.vertices())
-    for (auto f : mesh.mesh.vf_range(v)) {
-      out[size_t(v.idx())] = mesh.reflectance(f.idx());
-      break;
-    }
-  return out;
+  return ofVertexSurface(mesh, [&](int e) { return mesh.reflectance(e); });
 }
 
 std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<glm::dvec3>& atVertices) {
