@@ -1,16 +1,13 @@
 #include "radiosity/final_gather.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
 
 #include <glm/common.hpp>
-#include <glm/geometric.hpp>
 
-#include "mesh/color.h"
 #include "mesh/parallel.h"
 #include "radiosity/direct_light.h"
 #include "radiosity/hemicube.h"

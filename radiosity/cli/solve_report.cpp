@@ -149,7 +149,7 @@ void addRunFields(Json& report, const ProgressiveSolver& solver) {
 /// How the solution is shown: exposure, the ambient term and the clamped elements.
 void addDisplayFields(Json& report, const MeshedScene& scene, const Solution& solution) {
   report["exposure"] = exposureOf(scene, solution);
-  report["ambient_applied"] = solution.ambient != glm::dvec3(0.0);
+  report["ambient_applied"] = !solution.converged && !solution.gathered;
   report["ambient"] = rgb(solution.ambient);
   report["negative_clamped"] = solution.clamped;
 }
