@@ -212,10 +212,33 @@ Enclosure enclosureOf(Face f, const std::vector<ContactLine2>& contacts) {
   return e;
 }
 
-/// Which faces lie inside the polygon and are kept; those the contacts enclose are left out
-/// and recorded in `removed`.
+/// The area centroid of a boundary cycle.
+glm::dvec2 cycleCentroid(Ccb start) {
+  glm::dvec2 sum(0.0);
+  double twice = 0;
+  auto c = start;
+  do {
+    glm::dvec2 a = approx(c->source()->point()), b = approx(c->target()->point());
+    const double cross = a.x * b.y - a.y * b.x;
+    sum += (a + b) * cross, twice += cross;
+  } while (++c != start);
+  return twice != 0 ? sum / (3 * twice) : approx(start->source()->point());
+}
+
+/// A point well inside face f, away from its edges where it can be: the centroid of its outer
+/// boundary when that lies in f (a footprint, a strip), else a point beside an edge.
+glm::dvec2 deepPointIn(Face f) {
+  if (f->has_outer_ccb()) {
+    const glm::dvec2 c = cycleCentroid(f->outer_ccb());
+    if (strictlyInside(f, exact(c))) return c;
+  }
+  return approx(pointIn(f));
+}
+
+/// Which faces lie inside the polygon and are kept; those the contacts enclose and that lie
+/// inside a solid are left out and recorded in `removed`.
 KeptFaces classifyFaces(const Arrangement& arr, const std::vector<std::vector<EK::Point_2>>& rings,
-                        const std::vector<ContactLine2>& contacts,
+                        const std::vector<ContactLine2>& contacts, const InsideSolid& insideSolid,
                         std::vector<ContactCut::Removed>& removed) {
   KeptFaces kept;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
@@ -224,7 +247,7 @@ KeptFaces classifyFaces(const Arrangement& arr, const std::vector<std::vector<EK
       continue;
     }
     const Enclosure e = enclosureOf(f, contacts);
-    const bool hidden = e.closed && e.solid;
+    const bool hidden = e.closed && e.solid && insideSolid(deepPointIn(f));
     kept[f] = !hidden;
     if (hidden) removed.push_back({faceArea(f), std::vector<int>(e.by.begin(), e.by.end())});
   }
@@ -294,7 +317,8 @@ void addKeptLines(const Arrangement& arr, KeptFaces& kept, const IdMap& idOf, Co
 
 }  // namespace
 
-ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts) {
+ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
+                            const InsideSolid& insideSolid) {
   // Exact rings (consecutive duplicates dropped) and the curves of the arrangement.
   IdMap idOf;  // points whose id the caller knows
   std::vector<std::vector<EK::Point_2>> rings;
@@ -306,9 +330,9 @@ ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLi
   addContactCurves(contacts, idOf, curves);
   Arrangement arr;
   CGAL::insert(arr, curves.begin(), curves.end());
-  // Which faces lie inside the polygon, and which of those the contacts enclose.
+  // Which faces lie inside the polygon, and which of those the contacts enclose in a solid.
   ContactCut out;
-  KeptFaces kept = classifyFaces(arr, rings, contacts, out.removed);
+  KeptFaces kept = classifyFaces(arr, rings, contacts, insideSolid, out.removed);
   // What is kept: its boundary rings, and the lines inside it.
   addKeptRings(arr, kept, idOf, out);
   addKeptLines(arr, kept, idOf, out);

@@ -2,6 +2,7 @@
 // Cutting a planar polygon along the lines where other surfaces touch or pierce it, and
 // leaving out what those surfaces enclose. The CGAL implementation (2D arrangements, exact
 // constructions) stays behind this header.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,14 +38,20 @@ struct ContactCut {
   std::vector<Removed> removed;
 };
 
-/// Cuts `polygon` along `contacts` and leaves out every part of it that the contacts enclose:
-/// a part all of whose edges are contact lines with their solid side towards it, or edges of
-/// the polygon on which another surface stands, provided at least one is such a solid side
-/// (a block standing on a floor, also when pushed into a wall or a corner). Contact lines with
+/// Whether a point of the polygon's plane (in its 2D frame) lies inside a solid.
+using InsideSolid = std::function<bool(const glm::dvec2&)>;
+
+/// Cuts `polygon` along `contacts` and leaves out every part of it that the contacts enclose
+/// and that lies inside a solid. Enclosed: all of the part's edges are contact lines with their
+/// solid side towards it, or edges of the polygon on which another surface stands, and at
+/// least one is such a solid side (a block standing on a floor, also when pushed into a wall or
+/// a corner; but also a doorway's jamb between the wall's two faces). Inside a solid:
+/// `insideSolid` says so at a point inside the part (the footprint, not the jamb). Contact lines with
 /// kept parts on both sides stay in the kept polygon as lines (a board resting on a wall).
 /// Known limits of this rule: a footprint split by another contact line (overlapping blocks,
 /// a panel through it) keeps the parts not enclosed on every side, and a footprint over
 /// several coplanar pieces (a floor of many faces) is not enclosed in any one of them.
-ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts);
+ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
+                            const InsideSolid& insideSolid);
 
 }  // namespace rad

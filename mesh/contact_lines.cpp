@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
+#include "mesh/solid_probe.h"
 #include "mesh/spatial_hash.h"
 
 namespace rad::meshing {
@@ -195,6 +197,14 @@ struct Context {
   PieceBoxes boxes;
   SpatialHash made;        ///< points the cuts made, in cells of the tolerance
   std::vector<int> stamp;  ///< the last piece each piece was a candidate for
+  std::optional<SolidProbe> probe;  ///< rays against the uncut pieces, made when first asked
+
+  /// Whether point q of piece r's plane (in its frame), just off its lit side, is inside a solid.
+  bool insideSolid(size_t r, const glm::dvec2& q) {
+    if (!probe) probe.emplace(scene, table, original);
+    const PlaneFrame& frame = original[r].frame;
+    return probe->insideSolid(frame.lift(q), frame.normal);
+  }
 };
 
 /// The pieces whose boxes meet piece r's, each once.
@@ -411,7 +421,8 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     if (cutsNothing(cx, r, found.lines)) continue;
     // Cut it along them, leaving out what they enclose.
     const Polygon2 poly = projectedRings(table, pieces[r]);
-    const ContactCut cut = cutAlongContacts(poly, found.lines);
+    const ContactCut cut = cutAlongContacts(poly, found.lines,
+                                            [&](const glm::dvec2& q) { return cx.insideSolid(r, q); });
     // Take back what is kept, as point ids, and say what was left out.
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);

@@ -293,5 +293,60 @@ TEST(ContactTest, WallWithADoorwayTouchesAlongTwoStretches) {
   EXPECT_NEAR(floorArea / 1e6, 1.0, 1e-9);
 }
 
+/// The mesh's area on each surface, by name.
+std::map<std::string, double> areaBySurface(const Scene& scene, const PatchMesh& mesh) {
+  std::map<std::string, double> area;
+  for (int e = 0; e < mesh.elementCount(); ++e) area[scene.surfaces[size_t(mesh.surface(e))].name] += mesh.area(e);
+  return area;
+}
+
+/// What was cut away from each surface, by name.
+std::map<std::string, double> cutBySurface(const Scene& scene, const PatchMesh& mesh) {
+  std::map<std::string, double> cut;
+  for (const CutAway& c : mesh.cutAway) cut[scene.surfaces[size_t(c.surface)].name] += c.area;
+  return cut;
+}
+
+/// Whether the two maps hold the same names with values within `relative` of each other.
+void expectAreas(const std::map<std::string, double>& got, const std::map<std::string, double>& want) {
+  for (const auto& [name, area] : want) {
+    ASSERT_TRUE(got.count(name)) << name;
+    EXPECT_NEAR(got.at(name) / area, 1.0, 1e-9) << name;
+  }
+  for (const auto& [name, area] : got) EXPECT_TRUE(want.count(name)) << name << " " << area;
+}
+
+/// scenes/doorway.json: a 100 mm partition standing on the floor and touching the ceiling and
+/// both side walls, a doorway through it. The jambs and the lintel look into the doorway (open
+/// air) and are kept whole, though the wall's two faces close them on two sides; what lies
+/// inside the wall is cut away: the floor under it (two pieces, beside the doorway), the strip
+/// of ceiling over it and of each side wall beside it.
+TEST(ContactTest, DoorwayInAThickWallKeepsItsJambsAndLintel) {
+  Scene scene = loadScene(kScenes + "doorway.json");
+  PatchMesh mesh = buildPatchMesh(scene, resolveSettings(scene, SolverBlock{}).mesh());
+  expectAreas(cutBySurface(scene, mesh), {{"floor", (1600.0 + 1500) * 100}, {"ceiling", 4000.0 * 100},
+                                          {"left_wall", 2500.0 * 100}, {"right_wall", 2500.0 * 100}});
+  const auto area = areaBySurface(scene, mesh);
+  EXPECT_NEAR(area.at("jamb_left") / (2100.0 * 100), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("jamb_right") / (2100.0 * 100), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("lintel") / (900.0 * 100), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("floor") / (4000.0 * 8100 - 3100 * 100), 1.0, 1e-9);
+}
+
+/// tests/data/window_wall.json: a room whose back wall is 200 mm thick, with a window through
+/// it to the open outside. The sill, the head and both reveals are kept whole; the floor,
+/// ceiling and side walls lose exactly the strips inside the thick wall.
+TEST(ContactTest, WindowInAThickWallKeepsItsReveals) {
+  Scene scene = loadScene(std::string(RAD_SOURCE_DIR) + "/tests/data/window_wall.json");
+  PatchMesh mesh = buildPatchMesh(scene, resolveSettings(scene, SolverBlock{}).mesh());
+  expectAreas(cutBySurface(scene, mesh), {{"floor", 3000.0 * 200}, {"ceiling", 3000.0 * 200},
+                                          {"left_wall", 2500.0 * 200}, {"right_wall", 2500.0 * 200}});
+  const auto area = areaBySurface(scene, mesh);
+  EXPECT_NEAR(area.at("sill") / (1000.0 * 200), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("head") / (1000.0 * 200), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("reveal_left") / (900.0 * 200), 1.0, 1e-9);
+  EXPECT_NEAR(area.at("reveal_right") / (900.0 * 200), 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace rad
