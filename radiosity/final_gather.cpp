@@ -10,6 +10,7 @@
 
 #include "mesh/parallel.h"
 #include "radiosity/direct_light.h"
+#include "radiosity/gather_points.h"
 #include "radiosity/hemicube.h"
 
 namespace rad {
@@ -45,13 +46,6 @@ glm::dvec3 gatherRow(const Row& row, const Field& y) {
   return sum;
 }
 
-/// The vertices whose light needs gathering: those with a reflecting surface.
-std::vector<bool> gatheringVertices(const Field& rho) {
-  std::vector<bool> out(rho.size());
-  for (size_t v = 0; v < rho.size(); ++v) out[v] = rho[v] != glm::dvec3(0.0);
-  return out;
-}
-
 /// The hemicube's factors from vertex v (off its surface and inwards, as the rays start).
 void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, Hemicube& cube, FormFactors& out) {
   const DirectLight::Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(v));
@@ -59,7 +53,7 @@ void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, He
 }
 
 /// Renders every gathering vertex's hemicube; each row is used once at once (`once`, the
-/// single gather over y) and kept while the budget allows.
+/// single gather over y, at the gathering vertices) and kept while the budget allows.
 Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<bool>& gathering, const Field& y,
                 Field& once, const GatherOptions& options, GatherStats& stats) {
   const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(drawn);
@@ -113,17 +107,27 @@ Interpolation interpolation(const PatchMesh& mesh, const PatchMesh* base) {
   return out;
 }
 
+/// F·y at every vertex: gathered over y at the gathering vertices, interpolated at the others.
+Field gathered(const Rows& rows, const GatherPoints& points, const Field& y, int workers) {
+  Field atPoints(points.at.size(), glm::dvec3(0.0));
+  parallelFor(atPoints.size(), workers, [&](size_t v, int) {
+    if (points.at[v]) atPoints[v] = gatherRow(rows.rows[v], y);
+  }, 256);
+  return points.spread(atPoints);
+}
+
 /// The vertex system x = d + ρ·F·W·x as an operator: A·x = x − ρ·F·W·x.
 struct VertexSystem {
   const Rows& rows;
+  const GatherPoints& points;
   const Interpolation& W;
   const Field& rho;
   int workers;
 
   Field apply(const Field& x) const {
-    const Field y = W.apply(x);
+    const Field g = gathered(rows, points, W.apply(x), workers);
     Field out(x.size());
-    parallelFor(x.size(), workers, [&](size_t v, int) { out[v] = x[v] - rho[v] * gatherRow(rows.rows[v], y); }, 256);
+    for (size_t v = 0; v < x.size(); ++v) out[v] = x[v] - rho[v] * g[v];
     return out;
   }
 };
@@ -200,14 +204,11 @@ Field plus(Field a, const Field& rho, const Field& b) {
 }
 
 /// Without rays, the vertex system's d: what each vertex reflects of the emitters' emission
-/// (ρ·F·E), from its kept row.
-Field emittersGathered(const PatchMesh& drawn, const Rows& rows, const Field& rho, const std::vector<bool>& gathering) {
+/// (ρ·F·E), from the kept rows.
+Field emittersGathered(const PatchMesh& drawn, const Rows& rows, const GatherPoints& points, const Field& rho, int workers) {
   Field emitted(size_t(drawn.elementCount()));
   for (int e = 0; e < drawn.elementCount(); ++e) emitted[size_t(e)] = drawn.emission(e);
-  Field d(rho.size(), glm::dvec3(0.0));
-  for (size_t v = 0; v < d.size(); ++v)
-    if (gathering[v]) d[v] = rho[v] * gatherRow(rows.rows[v], emitted);
-  return d;
+  return plus(Field(rho.size(), glm::dvec3(0.0)), rho, gathered(rows, points, emitted, workers));
 }
 
 /// A property of each vertex's surface, from its first element (vertices belong to one side of
@@ -249,20 +250,21 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
                                     const GatherOptions& options, GatherStats* statsOut) {
   GatherStats stats;
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
-  const std::vector<bool> gathering = gatheringVertices(rho);
-  stats.points = int(std::count(gathering.begin(), gathering.end(), true));
+  const GatherPoints points = gatherPoints(mesh, base, rho);
+  stats.points = points.count();
   const PatchMesh& drawn = base ? *base : mesh;
+  const int workers = workerCount(options.workers);
   const Interpolation W = interpolation(mesh, base);
   Field once;
   auto clock = Clock::now();
-  const Rows rows = gatherRows(mesh, drawn, sceneSize, gathering, sent(drawn, W.apply(start), !direct), once,
+  const Rows rows = gatherRows(mesh, drawn, sceneSize, points.at, sent(drawn, W.apply(start), !direct), once,
                                options, stats);
   stats.hemicubeSeconds = secondsSince(clock);
   clock = Clock::now();
-  Field x = plus(directOrZero(direct, rho.size()), rho, once);
+  Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {
-    const Field d = direct ? *direct : emittersGathered(drawn, rows, rho, gathering);
-    solveSystem(VertexSystem{rows, W, rho, workerCount(options.workers)}, d, x, options, stats);
+    const Field d = direct ? *direct : emittersGathered(drawn, rows, points, rho, workers);
+    solveSystem(VertexSystem{rows, points, W, rho, workers}, d, x, options, stats);
     stats.iterated = true;
   }
   stats.solveSeconds = secondsSince(clock);

@@ -15,7 +15,9 @@
 // of its corners (the mean of the linear interpolant Gouraud shading shows), d the direct
 // light at the vertex (by rays, when given; then an emitter's emission is not gathered again)
 // or else ρ·F·E. Every row of a closed scene's F sums to 1, so a furnace comes out exact. The
-// system is solved by BiCGSTAB from the progressive solution.
+// system is solved by BiCGSTAB from the progressive solution. Only the vertices of the mesh as
+// built before refinement render hemicubes; the others interpolate what those gather
+// (radiosity/gather_points.h), while their direct light is their own rays'.
 #include <cstddef>
 #include <vector>
 
@@ -58,8 +60,8 @@ struct GatherStats {
 /// `start`: the light each vertex reflects, as the progressive solution shows it (the
 /// iteration's start and, over memory, what the single gather gathers). `direct`: per vertex,
 /// the direct light by rays, or null.
-/// `base`: the mesh as built before refinement (or null): the hemicubes draw its elements,
-/// each valued as the area-weighted mean of its parts, which costs a third of drawing them all.
+/// `base`: the mesh as built before refinement (or null): its vertices gather, and the
+/// hemicubes draw its elements, each valued as the area-weighted mean of its parts.
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* stats = nullptr);

@@ -42,15 +42,29 @@ void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
 }
 
+/// The progressive solve's hemicubes, emitters' shooting points and tolerance: defaults as a
+/// start for the final gather (`gatherStart`), or as the answer.
+Shooting resolveShooting(bool gatherStart, const SolverBlock& file, const SolverBlock& flags) {
+  Shooting s;
+  s.emitterHemicubeResolution = pick(flags.emitterHemicubeResolution, file.emitterHemicubeResolution,
+                                     gatherStart ? kGatherStartHemicubeResolution : kDefaultEmitterHemicubeResolution);
+  s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution,
+                              gatherStart ? kGatherStartHemicubeResolution : kDefaultHemicubeResolution);
+  s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples,
+                          gatherStart ? kGatherStartEmitterSamples : kDefaultEmitterSamples);
+  s.tolerance = pick(flags.tolerance, file.tolerance, gatherStart ? kGatherStartTolerance : kDefaultTolerance);
+  const bool stopGiven = flags.tolerance || file.tolerance || flags.maxShots || file.maxShots;
+  s.shotsPerPatch = gatherStart && !stopGiven ? kGatherStartShotsPerPatch : 0;
+  return s;
+}
+
 /// Hemicubes, shooting points and the factor cache.
 void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
-  s.emitterHemicubeResolution =
-      pick(flags.emitterHemicubeResolution, file.emitterHemicubeResolution, kDefaultEmitterHemicubeResolution);
-  s.hemicubeResolution = pick(flags.hemicubeResolution, file.hemicubeResolution, kDefaultHemicubeResolution);
+  static_cast<Shooting&>(s) = resolveShooting(s.finalGather, file, flags);
+  if (s.finalGather) s.ungathered = resolveShooting(false, file, flags);
   s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution, kDefaultGatherResolution);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
-  s.emitterSamples = pick(flags.emitterSamples, file.emitterSamples, kDefaultEmitterSamples);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
   s.proximitySamples = pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
@@ -58,7 +72,6 @@ void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& fl
 
 /// When to stop, and the exposure shown.
 void resolveStopping(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
-  s.tolerance = pick(flags.tolerance, file.tolerance, 1e-3);
   s.maxShots = pick(flags.maxShots, file.maxShots, 0L);
   s.timeLimit = pick(flags.timeLimit, file.timeLimit, 0.0);
   s.exposure = flags.exposure ? flags.exposure : file.exposure;

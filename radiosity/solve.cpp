@@ -85,20 +85,25 @@ void lightVertices(MeshedScene& s) {
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
-/// The final gather if the settings ask for it and it fits the budget: each vertex's hemicube
-/// draws every element, so its work grows as vertices × elements.
+/// The final gather if the settings ask for it and it fits the budget: each gathering vertex's
+/// hemicube (the mesh's before refinement: gather_points.h) draws every element of that mesh,
+/// so its work grows as vertices × elements. Skipped, the progressive solve is the answer and
+/// shoots as it would without the gather.
 void decideGather(MeshedScene& s) {
   if (!s.settings.finalGather) return;
-  const double drawn = (s.base ? s.base.get() : &s.mesh)->elementCount();
-  const double work = double(s.mesh.mesh.n_vertices()) * drawn;
+  const PatchMesh& drawnMesh = s.base ? *s.base : s.mesh;
+  const double drawn = drawnMesh.elementCount();
+  const size_t gathering = drawnMesh.mesh.n_vertices();
+  const double work = double(gathering) * drawn;
   s.gather = work <= kMaxGatherWork;
   if (s.gather) return;
+  if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
   char text[320];
   std::snprintf(text, sizeof text,
                 "final gather skipped: %zu vertices each drawing %.0f elements is more than the %.0e "
                 "vertex-element pairs it may cost (about ten seconds); the progressive solution is shown "
                 "at the vertices (coarser elements gather: raise solver.max_element_edge)",
-                s.mesh.mesh.n_vertices(), drawn, kMaxGatherWork);
+                gathering, drawn, kMaxGatherWork);
   s.mesh.warnings.push_back(text);
 }
 
@@ -136,10 +141,12 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
   return s;
 }
 
-SolverOptions solverOptions(const Settings& settings) {
+SolverOptions solverOptions(const Settings& settings, size_t patches) {
   SolverOptions options;
   options.tolerance = settings.tolerance;
   options.maxShots = settings.maxShots;
+  if (!options.maxShots && settings.shotsPerPatch > 0)
+    options.maxShots = std::max(1L, long(std::ceil(settings.shotsPerPatch * double(patches))));
   options.timeLimit = settings.timeLimit;
   options.overshoot = settings.overshoot;
   options.emitterSamples = settings.emitterSamples;
@@ -155,7 +162,7 @@ std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& s, int worke
 }
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)
-    : RadiositySolve(scene, solverOptions(scene.settings), workers) {}
+    : RadiositySolve(scene, solverOptions(scene.settings, scene.mesh.patches.size()), workers) {}
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, const SolverOptions& options, int workers)
     : scene_(scene), workers_(workers), factors_(hemicubeFactors(scene, workers)),

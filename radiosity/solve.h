@@ -59,8 +59,9 @@ struct MeshingOptions {
 /// its vertices by rays, and adaptive refinement where that light changes visibly.
 MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options = {});
 
-/// The solver options the settings give.
-SolverOptions solverOptions(const Settings& settings);
+/// The solver options the settings give, for a mesh of `patches` patches (which
+/// Settings::shotsPerPatch counts).
+SolverOptions solverOptions(const Settings& settings, size_t patches);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& scene, int workers = 0);
 

@@ -101,9 +101,9 @@ cli_test(usage.formfactors_odd_hemicube 2 "even" "" formfactors ${PROJECT_SOURCE
 cli_test(usage.formfactors_point_without_normal 2 "normal" "" formfactors ${PROJECT_SOURCE_DIR}/scenes/cube.json --point 0,0,0)
 
 # solve: the main job, on a small scene; a scene without emitters is bad input for solve only.
-cli_test(solve.small 0 "converged after" OUT/small.ply
+cli_test(solve.small 0 "progressive start [0-9]+ shots.*final gather at [0-9]+ vertices" OUT/small.ply
          solve ${DATA}/good_small.json -o OUT/small.ply --report OUT/small.json --hemicube 64)
-cli_test(solve.shot_limit 0 "stopped after 3 shots" OUT/limited.ply
+cli_test(solve.shot_limit 0 "progressive start 3 shots .*max_shots" OUT/limited.ply
          solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/limited.ply --max-shots 3 --hemicube 32)
 cli_test(bad.solve_no_emitter 1 "no_emitter.json: surfaces: expected at least one surface whose material has an emission, found none"
          OUT/no_emitter.ply solve ${DATA}/no_emitter.json -o OUT/no_emitter.ply)
@@ -111,7 +111,7 @@ cli_test(info.no_emitter 0 "" "" info ${DATA}/no_emitter.json)
 cli_test(bad.solve_report_folder 1 "no_such_folder/r.json: expected an output file in an existing folder"
          OUT/r.ply solve ${DATA}/good_small.json -o OUT/r.ply --report OUT/no_such_folder/r.json --hemicube 32)
 cli_test(usage.solve_overshoot 2 "overshoot" OUT/o.ply solve ${DATA}/good_small.json -o OUT/o.ply --overshoot 3)
-cli_test(solve.fixed_point_direct 0 "converged after" OUT/ref.ply
+cli_test(solve.fixed_point_direct 0 "progressive start .*final gather" OUT/ref.ply
          solve ${PROJECT_SOURCE_DIR}/scenes/parallel_squares.json -o OUT/ref.ply --fixed-point direct --hemicube 64)
 cli_test(bad.solve_fixed_point_mismatch 1 "small.ply: expected a result of the same scene and mesh settings"
          OUT/mismatch.ply solve ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/mismatch.ply
@@ -149,11 +149,13 @@ cli_test(usage.reference_paths_and_error 2 "excludes" OUT/r.csv
          reference ${PROJECT_SOURCE_DIR}/scenes/cube.json -o OUT/r.csv --paths 100 --relative-error 0.1)
 
 # Adaptive subdivision: its flags, and their bad values.
-cli_test(solve.adaptive_flags 0 "converged after" OUT/adaptive.ply
+cli_test(solve.adaptive_flags 0 "final gather at" OUT/adaptive.ply
          solve ${DATA}/good_small.json -o OUT/adaptive.ply --adaptive true --min-element-edge 0.05
          --contrast 0.05 --vertex-direct true)
-cli_test(solve.uniform 0 "converged after" OUT/uniform.ply
+cli_test(solve.uniform 0 "final gather at" OUT/uniform.ply
          solve ${DATA}/good_small.json -o OUT/uniform.ply --adaptive false --vertex-direct false)
+cli_test(solve.without_gather 0 "converged after [0-9]+ shots" OUT/ungathered.ply
+         solve ${DATA}/good_small.json -o OUT/ungathered.ply --final-gather false)
 cli_test(usage.contrast_range 2 "contrast" OUT/c.ply solve ${DATA}/good_small.json -o OUT/c.ply --contrast 2)
 cli_test(usage.adaptive_not_bool 2 "adaptive" OUT/a.ply solve ${DATA}/good_small.json -o OUT/a.ply --adaptive maybe)
 cli_test(usage.min_edge_negative 2 "min-element-edge" OUT/m.ply

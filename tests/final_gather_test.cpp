@@ -12,6 +12,7 @@
 
 #include "mesh/reference_points.h"
 #include "radiosity/final_gather.h"
+#include "radiosity/gather_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
 
@@ -32,14 +33,8 @@ TEST_P(FurnaceGatherTest, EveryVertexAndElementExact) {
   const FurnaceCase c = GetParam();
   Scene scene = loadSceneToSolve(test::kScenes + "furnace.json");
   for (Material& m : scene.materials) m.reflectance = glm::dvec3(c.rho);
-  // The scene's meshing; the progressive solve only starts the gather off, so it may be
-  // quick (every patch of the furnace emits, and emitters shoot from 64 points at R = 256).
-  SolverBlock flags;
-  flags.emitterSamples = 4;
-  flags.hemicubeResolution = flags.emitterHemicubeResolution = 64;
-  flags.tolerance = 1e-2;
-  flags.maxShots = 2000;  // at ρ = 0.99 the unshot power falls slowly; the gather converges anyway
-  const Settings settings = resolveSettings(scene, flags);
+  // The scene's settings: the progressive solve only starts the gather off (one shot per patch).
+  const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed = meshScene(std::move(scene), settings);
   ASSERT_TRUE(meshed.gather);
   ASSERT_FALSE(meshed.direct);  // every patch emits: no rays, the gather takes the emission itself
@@ -61,20 +56,24 @@ INSTANTIATE_TEST_SUITE_P(Reflectances, FurnaceGatherTest,
                          });
 
 /// The true error of what the default solve shows, against a stored reference; only the
-/// points tagged `tag` when it is not empty.
-double trueError(const test::Solved& s, const std::string& reference, const std::string& tag = "") {
+/// points whose tag starts with `tag`.
+ErrorSummary trueErrorOf(const test::Solved& s, const std::string& reference, const std::string& tag) {
   std::vector<ReferencePoint> points = readReferenceFile(reference).points;
-  if (!tag.empty())
-    points.erase(std::remove_if(points.begin(), points.end(), [&](const ReferencePoint& p) { return p.tag != tag; }),
-                 points.end());
-  return TrueError(s.meshed.mesh, s.meshed.scene, points, reference).measure(s.shown).rms;
+  points.erase(std::remove_if(points.begin(), points.end(),
+                              [&](const ReferencePoint& p) { return p.tag.compare(0, tag.size(), tag) != 0; }),
+               points.end());
+  return TrueError(s.meshed.mesh, s.meshed.scene, points, reference).measure(s.shown);
 }
 
-/// Limits on the Cornell box's true error at default settings, reference noise included
-/// (0.79 % and 0.62 % RMS). Measured: 1.69 % at all 300 points, 1.44 % at the 225 placed by
-/// area (4.55 % and 4.27 % before the final gather), 4.05 % at 160 points within 50 mm of the
-/// blocks (44.3 % before).
-constexpr double kCornellAll = 0.02, kCornellArea = 0.02, kCornellNearBlocks = 0.045;
+double trueError(const test::Solved& s, const std::string& reference, const std::string& tag = "") {
+  return trueErrorOf(s, reference, tag).rms;
+}
+
+/// Limits on the Cornell box's true error at default settings (the accurate-vertices issue's
+/// targets), reference noise included (0.79 % and 0.62 % RMS). Measured: 1.56 % at all 300
+/// points, 1.39 % at the 225 placed by area (4.55 % and 4.27 % before the final gather), 3.83 %
+/// at 160 points within 50 mm of the blocks (44.3 % before).
+constexpr double kCornellAll = 0.02, kCornellArea = 0.02, kCornellNearBlocks = 0.04;
 
 TEST(FinalGatherTest, CornellBoxTrueErrorAtDefaults) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
@@ -82,6 +81,64 @@ TEST(FinalGatherTest, CornellBoxTrueErrorAtDefaults) {
   EXPECT_LE(trueError(*s, kDocs + "cornell_reference.csv"), kCornellAll);
   EXPECT_LE(trueError(*s, kDocs + "cornell_reference.csv", "area"), kCornellArea);
   EXPECT_LE(trueError(*s, kDocs + "cornell_near_blocks_reference.csv"), kCornellNearBlocks);
+}
+
+/// The doorway scene (scenes/doorway.json): the room behind the doorway, lit only through it,
+/// against its path-traced reference (docs/doorway_reference.csv, 1 % noise), at default
+/// settings. The targets: no bias beyond ±1 % in any channel, RMS ≤ 3 % over the
+/// room's area-stratified points. The doorway's jambs (kept by the contact cutter) within 3 %,
+/// its lintel (6 points) within 5 %. Measured: room 1.6 % RMS, channel means −0.4 to −0.2 %;
+/// jambs 0.8 % and 1.2 %; lintel 3.6 % (one point in its corner with a jamb −9 %, where the
+/// indirect light changes within the 100 mm reveal faster than its vertices follow). The
+/// floor strip behind the doorway (tag doorway_floor, 3.8 %) lies in the lamp's sharp
+/// penumbrae and is not held to these.
+constexpr double kDoorwayRoomBias = 0.01, kDoorwayRoomRms = 0.03, kDoorwayJambRms = 0.03, kDoorwayLintelRms = 0.05;
+
+TEST(FinalGatherTest, RoomBehindADoorwayAtDefaults) {
+  const auto s = test::solveLikeCli(test::kScenes + "doorway.json");
+  ASSERT_TRUE(s->solution.gathered);
+  const ErrorSummary room = trueErrorOf(*s, kDocs + "doorway_reference.csv", "roomB_");
+  EXPECT_GE(room.used, 500);
+  EXPECT_LE(room.rms, kDoorwayRoomRms);
+  for (int c = 0; c < 3; ++c) EXPECT_LE(std::abs(room.meanRgb[c]), kDoorwayRoomBias) << "channel " << c;
+  for (const char* jamb : {"doorway_jamb_left", "doorway_jamb_right"})
+    EXPECT_LE(trueError(*s, kDocs + "doorway_reference.csv", jamb), kDoorwayJambRms) << jamb;
+  EXPECT_LE(trueError(*s, kDocs + "doorway_reference.csv", "doorway_lintel"), kDoorwayLintelRms);
+}
+
+/// Where the gather renders: on the refined Cornell box, exactly the vertices of the mesh before
+/// refinement; every other vertex takes a convex combination of gathering vertices of its own
+/// surface, which reproduces a linear field exactly (barycentric weights in its base element).
+TEST(FinalGatherTest, RefinedVerticesInterpolateTheBaseVertices) {
+  Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
+  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  ASSERT_TRUE(meshed.base);
+  const PatchMesh& mesh = meshed.mesh;
+  const GatherPoints g = gatherPoints(mesh, meshed.base.get(), vertexReflectance(mesh));
+  EXPECT_EQ(size_t(g.count()), meshed.base->mesh.n_vertices());
+  EXPECT_LT(size_t(g.count()), mesh.mesh.n_vertices() / 2 + 1000);
+  auto at = [&](size_t v) {
+    const auto& p = mesh.mesh.point(TriMesh::VertexHandle(int(v)));
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  std::vector<glm::dvec3> linear(mesh.mesh.n_vertices());
+  for (size_t v = 0; v < linear.size(); ++v) linear[v] = glm::dvec3(1 + 0.003 * at(v).x - 0.002 * at(v).y + 0.001 * at(v).z);
+  std::vector<glm::dvec3> onlyGathered(linear.size(), glm::dvec3(0.0));
+  for (size_t v = 0; v < linear.size(); ++v)
+    if (g.at[v]) onlyGathered[v] = linear[v];
+  const std::vector<glm::dvec3> spread = g.spread(onlyGathered);
+  const std::vector<glm::dvec3> rho = vertexReflectance(mesh);
+  for (size_t v = 0; v < linear.size(); ++v) {
+    double sum = 0;
+    for (const auto& [p, w] : g.from[v]) {
+      ASSERT_TRUE(g.at[size_t(p)]);
+      ASSERT_GT(w, 0);
+      ASSERT_EQ(rho[size_t(p)], rho[v]);  // the same surface's
+      sum += w;
+    }
+    ASSERT_NEAR(sum, 1, 1e-12) << v;
+    ASSERT_NEAR(spread[v].x, linear[v].x, 1e-9) << v;
+  }
 }
 
 TEST(FinalGatherTest, ElementsShowTheMeanOfTheirVertices) {
@@ -104,7 +161,10 @@ TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
   const MeshedScene meshed =
       meshScene(std::move(scene), settings, {false, [&](const std::string& w) { warnings.push_back(w); }});
   EXPECT_FALSE(meshed.gather);
-  EXPECT_GT(double(meshed.mesh.mesh.n_vertices()) * meshed.mesh.elementCount(), kMaxGatherWork);
+  const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
+  EXPECT_GT(double(drawn.mesh.n_vertices()) * drawn.elementCount(), kMaxGatherWork);
+  EXPECT_EQ(meshed.settings.hemicubeResolution, kDefaultHemicubeResolution);  // shoots as without the gather
+  EXPECT_EQ(meshed.settings.tolerance, kDefaultTolerance);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
                           [](const std::string& w) { return w.find("final gather skipped") != std::string::npos; }));
 }

@@ -146,10 +146,12 @@ Curve gatheringCurve(const std::string& name, const TransportMatrix& system, dou
   return c;
 }
 
-/// The flags of the variants' one uniform mesh: the user's, without refinement or vertex direct light.
+/// The flags of the variants' one uniform mesh: the user's, without refinement, vertex direct
+/// light or the final gather (the variants are the solvers of element radiosities).
 SolverBlock uniformFlags(SolverBlock flags) {
   flags.adaptive = false;
   flags.vertexDirect = false;
+  flags.finalGather = false;
   return flags;
 }
 
@@ -178,7 +180,7 @@ std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const
   const MeshedScene meshed = meshQuietly(std::move(scene), uniformFlags(o.flags));
   const PatchMesh& mesh = meshed.mesh;
   const TrueError truth(mesh, meshed.scene, points, o.reference);
-  const SolverOptions options = solverOptions(meshed.settings);
+  const SolverOptions options = solverOptions(meshed.settings, meshed.mesh.patches.size());
   std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(meshed, 1);
   auto t0 = std::chrono::steady_clock::now();
   TransportMatrix system(mesh, *factors, options);
@@ -239,10 +241,11 @@ void addGathered(Curve& c, const RadiositySolve& solve, const MeshedScene& meshe
         solve.solver().shots());
 }
 
-/// The rung's flags, stopped at kLadderTolerance unless the user gave a tolerance.
-SolverBlock ladderFlags(const Rung& rung) {
+/// The rung's flags, stopped at kLadderTolerance unless the user gave a tolerance; a rung that
+/// gathers stops its progressive start as `radiosity solve` does (the gather converges from it).
+SolverBlock ladderFlags(const Rung& rung, const Scene& scene) {
   SolverBlock flags = rung.flags;
-  if (!flags.tolerance) flags.tolerance = kLadderTolerance;
+  if (!flags.tolerance && !resolveSettings(scene, flags).finalGather) flags.tolerance = kLadderTolerance;
   return flags;
 }
 
@@ -265,7 +268,7 @@ Curve ladderCurve(const Rung& rung, const Scene& scene, const std::vector<Refere
                   const std::string& reference) {
   Curve c(rung.name);
   auto t0 = std::chrono::steady_clock::now();
-  const MeshedScene meshed = meshQuietly(scene, ladderFlags(rung));
+  const MeshedScene meshed = meshQuietly(scene, ladderFlags(rung, scene));
   const double meshing = seconds(t0);
   const TrueError truth(meshed.mesh, meshed.scene, points, reference);
   RadiositySolve solve(meshed);

@@ -125,9 +125,11 @@ void printAdaptive(const Settings& settings, const AdaptiveStats& adaptive) {
 /// What the final gather will do.
 std::string gatherLine(const MeshedScene& meshed) {
   if (!meshed.gather) return meshed.settings.finalGather ? "skipped (over its budget)" : "off";
-  const int drawn = (meshed.base ? meshed.base.get() : &meshed.mesh)->elementCount();
-  return "at " + std::to_string(meshed.mesh.mesh.n_vertices()) + " vertices over " + std::to_string(drawn) +
-         " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution);
+  const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
+  const std::string others = meshed.base ? " (the other " + std::to_string(meshed.mesh.mesh.n_vertices() - drawn.mesh.n_vertices()) +
+                                               ", added by refinement, interpolate)" : "";
+  return "at " + std::to_string(drawn.mesh.n_vertices()) + " vertices" + others + " over " +
+         std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution);
 }
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.

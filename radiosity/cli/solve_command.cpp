@@ -59,7 +59,7 @@ std::vector<glm::dvec3> fixedPoint(const std::string& which, const MeshedScene& 
   if (which.empty()) return {};
   if (which != "direct") return readResultRadiosity(which, scene.mesh, scene.scene.diagonal());
   const std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(scene);
-  return TransportMatrix(scene.mesh, *factors, solverOptions(scene.settings)).solveDirect();
+  return TransportMatrix(scene.mesh, *factors, solverOptions(scene.settings, scene.mesh.patches.size())).solveDirect();
 }
 
 /// A history row's true error: the RMS, and per channel the RMS and mean.
@@ -112,6 +112,14 @@ void printOutcome(const RadiositySolve& solve, const Solution& solution, const s
   if (solution.clamped)
     std::fprintf(stderr, "radiosity: warning: %d elements had a negative channel (overshooting "
                          "before convergence), set to 0\n", solution.clamped);
+  if (solution.gathered) {
+    const GatherStats& g = solution.gather;
+    std::fprintf(stderr, "radiosity: progressive start %ld shots in %.2f s (unshot %.2e, %s); final gather at %d "
+                         "vertices, %d iterations (residual %.1e) in %.2f s; wrote %s\n",
+                 solver.shots(), solver.seconds(), solver.unshotFraction(), stopName(solver.stopReason()), g.points,
+                 g.iterations, g.residual, g.hemicubeSeconds + g.solveSeconds, output.c_str());
+    return;
+  }
   std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",
                solution.converged ? "converged" : "stopped", solver.shots(), solver.seconds(),
                solver.unshotFraction(), stopName(solver.stopReason()), output.c_str());

@@ -5,17 +5,17 @@ namespace {
 
 /// The settings of shooting: hemicubes, stop conditions, shooting points and the factor cache.
 void addShootingSettings(Json& s, const Settings& settings) {
-  const SolverOptions options = solverOptions(settings);
   s["hemicube_resolution"] = settings.hemicubeResolution;
   s["emitter_hemicube_resolution"] = settings.emitterHemicubeResolution;
   s["tolerance"] = settings.tolerance;
   s["seed"] = settings.seed;
   s["max_shots"] = settings.maxShots;
+  s["shots_per_patch"] = settings.shotsPerPatch;
   s["time_limit"] = settings.timeLimit;
   s["overshoot"] = settings.overshoot;
-  s["emitter_samples"] = options.emitterSamples;
-  s["shooter_samples"] = options.shooterSamples;
-  s["proximity_samples"] = options.proximitySamples;
+  s["emitter_samples"] = settings.emitterSamples;
+  s["shooter_samples"] = settings.shooterSamples;
+  s["proximity_samples"] = settings.proximitySamples;
   s["factor_cache_mb"] = settings.factorCacheMb;
 }
 

@@ -1,0 +1,32 @@
+#pragma once
+// Where the final gather renders its hemicubes. Adaptive refinement adds vertices where the
+// direct light changes (a penumbra's edge), which the rays compute at every vertex; the
+// indirect light there is as smooth as elsewhere. So the vertices of the mesh as built before
+// refinement gather (its contact lines are graded already, where the indirect light does change
+// fast), and a vertex refinement added takes the light gathered at the corners of its base
+// element, interpolated linearly at its position.
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/patch_mesh.h"
+
+namespace rad {
+
+struct GatherPoints {
+  std::vector<bool> at;  ///< per vertex: gathers through its own hemicube
+  /// Per vertex: the gathering vertices its gathered light is interpolated from, with their
+  /// weights (a gathering vertex: itself, weight 1; a black one: none).
+  std::vector<std::vector<std::pair<int, double>>> from;
+
+  /// Values at every vertex from values at the gathering ones.
+  std::vector<glm::dvec3> spread(const std::vector<glm::dvec3>& atPoints) const;
+  int count() const;
+};
+
+/// The gathering vertices of `mesh`, whose reflectance per vertex is `rho` (black vertices
+/// gather nothing): with `base` (the mesh before refinement) its corners, else every vertex.
+GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const std::vector<glm::dvec3>& rho);
+
+}  // namespace rad
