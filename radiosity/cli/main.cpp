@@ -66,7 +66,7 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
                  "true or false (solver.adaptive; default true)");
   addPositive(app, "--min-element-edge", flags.minElementEdge,
               "Adaptive refinement stops at elements this small, scene units (solver.min_element_edge; "
-              "default: element edge / 4)");
+              "default: element edge / 8)");
   addInRange(app, "--contrast", flags.contrast, 1e-6, 1.0,
              "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
              "across an element (solver.contrast; default 0.02)");
@@ -82,10 +82,10 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
 void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
   addResolution(app, "--hemicube", flags.hemicubeResolution,
                 "Hemicube resolution, pixels across the top face, even (solver.hemicube_resolution; "
-                "default 128)");
+                "default 128; 64 as the final gather's start)");
   addResolution(app, "--emitter-hemicube", flags.emitterHemicubeResolution,
                 "Hemicube resolution for emitting patches, even "
-                "(solver.emitter_hemicube_resolution; default 256)");
+                "(solver.emitter_hemicube_resolution; default 256; 64 as the final gather's start)");
   addResolution(app, "--gather-hemicube", flags.gatherResolution,
                 "Hemicube resolution of the final gather at the vertices, even "
                 "(solver.gather_resolution; default 32)");
@@ -95,7 +95,7 @@ void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
 /// Shooting points and the factor cache.
 void addShootingFlags(CLI::App& app, SolverBlock& flags) {
   addInRange(app, "--emitter-samples", flags.emitterSamples, 1, 65536,
-             "Shooting points on each emitting patch (solver.emitter_samples; default 64)");
+             "Shooting points on each emitting patch (solver.emitter_samples; default 64; 4 as the final gather's start)");
   addInRange(app, "--shooter-samples", flags.shooterSamples, 1, 65536,
              "Shooting points on each other patch, at least (solver.shooter_samples; default 1)");
   addInRange(app, "--proximity-samples", flags.proximitySamples, 0.0, 65536.0,

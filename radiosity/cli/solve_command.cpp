@@ -178,7 +178,8 @@ void runSolve(const SolveOptions& o) {
 /// When shooting stops, and how hard it shoots.
 void addStopFlags(CLI::App& sub, SolverBlock& flags) {
   sub.add_option("--tolerance", flags.tolerance,
-                 "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3)")
+                 "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3; as the final "
+                 "gather's start 1e-2 or one shot per patch, whichever comes first)")
       ->check(CLI::Range(1e-300, 1.0));
   sub.add_option("--max-shots", flags.maxShots, "Stop after this many shots (solver.max_shots)")
       ->check(CLI::PositiveNumber);
