@@ -35,10 +35,11 @@ void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   s.maxPatchEdge = mesh.maxPatchEdge;
   s.cutContacts = mesh.cutContacts;
   s.adaptive = pick(flags.adaptive, file.adaptive, true);
-  s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge, s.maxElementEdge / kDefaultMinElementRatio);
+  s.finalGather = pick(flags.finalGather, file.finalGather, true);
+  const double ratio = s.finalGather ? kGatherMinElementRatio : kDefaultMinElementRatio;
+  s.minElementEdge = pick(flags.minElementEdge, file.minElementEdge, s.maxElementEdge / ratio);
   s.contrast = pick(flags.contrast, file.contrast, kDefaultContrast);
   s.vertexDirect = pick(flags.vertexDirect, file.vertexDirect, true);
-  s.finalGather = pick(flags.finalGather, file.finalGather, true);
   s.maxElements = pick(flags.maxElements, file.maxElements, kDefaultMaxElements);
 }
 

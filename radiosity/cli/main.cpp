@@ -66,7 +66,7 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
                  "true or false (solver.adaptive; default true)");
   addPositive(app, "--min-element-edge", flags.minElementEdge,
               "Adaptive refinement stops at elements this small, scene units (solver.min_element_edge; "
-              "default: element edge / 8)");
+              "default: element edge / 8 with the final gather, / 4 without)");
   addInRange(app, "--contrast", flags.contrast, 1e-6, 1.0,
              "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
              "across an element (solver.contrast; default 0.02)");
