@@ -3,8 +3,10 @@
 #include "mesh/patch_assembly.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
+#include <OpenMesh/Core/System/omstream.hh>
 #include <glm/geometric.hpp>
 
 #include "mesh/geometry.h"
@@ -12,6 +14,9 @@
 
 namespace rad::meshing {
 namespace {
+
+/// Elements share a vertex when their normals are within the crease angle.
+const double kCreaseCos = std::cos(kCreaseAngleDeg * M_PI / 180.0);
 
 /// Fills a PatchMesh with the elements of the pieces, patch by patch, one vertex set per
 /// surface side.
@@ -39,18 +44,22 @@ class Assembler {
       for (const auto& group : patchesOfPiece_[size_t(piece)]) addPatch(s, side, piece, group);
   }
 
-  /// The vertex of point `id` on the current surface side, made when new.
-  TriMesh::VertexHandle vertex(int id) {
-    auto [it, added] = vertexOf_.try_emplace(id);
-    if (added) it->second = out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[id]));
-    return it->second;
+  /// The vertex of point `id` on the current surface side for an element facing `normal`,
+  /// made when new: elements share a vertex only across edges that bend less than the crease
+  /// angle, so light does not smear round a block's edge (a mesh file's box is one surface).
+  TriMesh::VertexHandle vertex(int id, const glm::dvec3& normal) {
+    auto& atPoint = vertexOf_[id];
+    for (const auto& [v, anchor] : atPoint)
+      if (glm::dot(anchor, normal) >= kCreaseCos) return v;
+    atPoint.push_back({out_.mesh.add_vertex(PatchMesh::toOpenMesh(table_[id])), normal});
+    return atPoint.back().first;
   }
 
   /// The face on points t (ids), sharing the side's vertices; on non-manifold input (mesh
   /// files) a face with its own corners. Vertices are made last corner first: the numbering
   /// results have always had.
-  TriMesh::FaceHandle addFace(const std::array<int, 3>& t) {
-    const auto c = vertex(t[2]), b = vertex(t[1]), a = vertex(t[0]);
+  TriMesh::FaceHandle addFace(const std::array<int, 3>& t, const glm::dvec3& normal) {
+    const auto c = vertex(t[2], normal), b = vertex(t[1], normal), a = vertex(t[0], normal);
     auto f = out_.mesh.add_face(a, b, c);
     if (f.is_valid()) return f;
     ++nonManifold_;
@@ -67,7 +76,7 @@ class Assembler {
     const glm::dvec3 a = table_[t[0]], b = table_[t[1]], c = table_[t[2]];
     const double area = triangleArea(a, b, c);
     if (!(area > 0)) return;
-    const int e = addFace(t).idx();
+    const int e = addFace(t, normal).idx();
     setElement(e, patch, area, normal);
     patch.elements.push_back(e);
     patch.area += area;
@@ -124,7 +133,8 @@ class Assembler {
   const PieceTriangles& elements_;
   const std::vector<std::vector<std::vector<int>>>& patchesOfPiece_;
   PatchMesh& out_;
-  std::unordered_map<int, TriMesh::VertexHandle> vertexOf_;  ///< on the current side
+  /// On the current side: each point's vertices, with the normal of the element that made each.
+  std::unordered_map<int, std::vector<std::pair<TriMesh::VertexHandle, glm::dvec3>>> vertexOf_;
   int nonManifold_ = 0;
 };
 
@@ -160,10 +170,14 @@ void assemblePatchMesh(const Scene& scene, const PointTable& table,
   std::vector<std::vector<int>> piecesOfSurface(scene.surfaces.size());
   for (size_t p = 0; p < pieces.size(); ++p) piecesOfSurface[size_t(pieces[p].surface)].push_back(int(p));
   Assembler assembler(scene, table, pieces, elements, patchesOfPiece, out);
+  // OpenMesh would print "complex edge" for each face it refuses; the count below says it once.
+  omerr().disable();
   for (size_t s = 0; s < scene.surfaces.size(); ++s) assembler.addSurface(int(s), piecesOfSurface[s]);
+  omerr().enable();
   if (assembler.nonManifold())
     out.warnings.push_back("meshing: " + std::to_string(assembler.nonManifold()) +
-                           " faces on non-manifold edges got their own vertices");
+                           " elements on edges shared by more than two faces (or faces of opposite "
+                           "facing) got their own vertices; light is not interpolated across them");
   setVertexNormals(out);
 }
 

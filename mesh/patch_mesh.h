@@ -23,6 +23,11 @@ using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 /// times shorter than the element edge, and Delaunay refinement grades the elements from
 /// there, where the light changes fastest; unless adaptive refinement grades them instead.
 constexpr double kDefaultContactGrading = 8;
+/// Elements of one surface side share a vertex across an edge that bends by less than this
+/// many degrees (the crease angle modelling tools smooth below): a tessellated curve stays
+/// smooth, a box's edge keeps a vertex per face, so light does not smear round it (a mesh
+/// file's box is one surface), and a polygon triangulated round a slight bend stays smooth.
+constexpr double kCreaseAngleDeg = 30;
 
 /// Lengths in scene units.
 struct MeshSettings {

@@ -61,12 +61,18 @@ SpatialHash vertexHash(const Mesh& m, double cell) {
   return grid;
 }
 
+/// Whether coincident vertices v and w of one side are meant apart: their elements bend by
+/// more than the crease angle (kCreaseAngleDeg), so each face of a box keeps its own.
+bool acrossCrease(const Mesh& m, Mesh::VertexHandle v, Mesh::VertexHandle w) {
+  return (m.normal(v) | m.normal(w)) < std::cos(kCreaseAngleDeg * M_PI / 180.0);
+}
+
 /// Adds the vertices of v's side in v's cell (after v) within `distance` of it.
 void addCoincident(const Mesh& m, const SpatialHash& grid, const std::vector<int>& side,
                    Mesh::VertexHandle v, double distance, std::vector<TJunction>& out) {
   const glm::dvec3 p = PatchMesh::toGlm(m.point(v));
   grid.visit(p, p, [&](int w) {
-    if (w <= v.idx() || side[size_t(w)] != side[size_t(v.idx())]) return;
+    if (w <= v.idx() || side[size_t(w)] != side[size_t(v.idx())] || acrossCrease(m, v, Mesh::VertexHandle(w))) return;
     if ((m.point(Mesh::VertexHandle(w)) - m.point(v)).norm() <= distance)
       out.push_back({w, v.idx(), v.idx()});
   });

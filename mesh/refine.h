@@ -41,7 +41,8 @@ struct TJunction {
 
 /// Every vertex that lies within `tolerance` (relative to the edge's length) of the inside of
 /// an edge of its own surface side without being one of its ends; or two distinct vertices
-/// of one surface side at the same point (a crack). Empty for a conforming mesh.
+/// of one surface side at the same point (a crack), unless its elements there bend by more than
+/// the crease angle (kCreaseAngleDeg: a box's edge). Empty for a conforming mesh.
 /// acrossSurfaces: also vertices of other surfaces inside an edge (where surfaces meet).
 std::vector<TJunction> findTJunctions(const PatchMesh& mesh, double tolerance = 1e-7,
                                       bool acrossSurfaces = false);

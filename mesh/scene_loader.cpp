@@ -70,8 +70,8 @@ void readScene(const Node& n, const std::string& baseDir, Scene& scene) {
   if (!n.has("version")) n.failWith("a \"version\" key", "none");
   if (n["version"].value() != 1) n["version"].fail("version 1");
   if (n.has("units")) scene.units = n["units"].string();
-  if (!n.has("materials")) n.failWith("a \"materials\" object", "none");
-  scene_file::readMaterials(n["materials"], scene);
+  // A scene of mesh files whose MTL files give every material needs no "materials" object.
+  if (n.has("materials")) scene_file::readMaterials(n["materials"], scene);
   if (!n.has("surfaces")) n.failWith("a \"surfaces\" array", "none");
   scene_file::readSurfaces(n["surfaces"], baseDir, scene);
   readDisplay(n, scene);

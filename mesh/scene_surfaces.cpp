@@ -1,6 +1,7 @@
 // The scene file's surfaces: polygons (with holes) and mesh files (with transforms), checked
 // to be meshable.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -167,6 +168,40 @@ void addGroupSurface(const Node& s, Surface surface, MeshFileGroup& group, int f
   scene.surfaces.push_back(std::move(surface));
 }
 
+/// The key of a face as a set of corners with a facing: equal for a face repeated with the
+/// same corners (in any order of start) facing the same way.
+std::vector<double> faceKey(const Polygon& face) {
+  std::vector<std::array<double, 3>> corners;
+  for (const auto& p : face.outer) corners.push_back({p.x, p.y, p.z});
+  std::sort(corners.begin(), corners.end());
+  const glm::dvec3 n = newellNormal(face.outer);
+  const int axis = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0 : std::abs(n.y) >= std::abs(n.z) ? 1 : 2;
+  std::vector<double> key{n[axis] > 0 ? 1.0 : -1.0};
+  for (const auto& c : corners) key.insert(key.end(), c.begin(), c.end());
+  return key;
+}
+
+/// Drops the faces that repeat an earlier face of the file (same corners, same facing: two
+/// coincident copies would fight in every hemicube and double the area), and says so once.
+void dropRepeatedFaces(std::vector<MeshFileGroup>& groups, const Node& s, std::vector<std::string>& warnings) {
+  std::set<std::vector<double>> seen;
+  size_t dropped = 0;
+  std::string where;
+  for (auto& group : groups) {
+    const size_t before = group.faces.size();
+    group.faces.erase(std::remove_if(group.faces.begin(), group.faces.end(),
+                                     [&](const Polygon& f) { return !seen.insert(faceKey(f)).second; }),
+                      group.faces.end());
+    if (group.faces.size() == before) continue;
+    dropped += before - group.faces.size();
+    where += (where.empty() ? "" : ", ") + (group.material.empty() ? std::string("no material") : group.material);
+  }
+  if (dropped)
+    warnings.push_back(s.where() + " (" + s["mesh"].string() + "): dropped " + std::to_string(dropped) +
+                       " face(s) repeating an earlier face with the same corners and facing (in " + where +
+                       "); remove the copies from the file to silence this");
+}
+
 /// A mesh file surface (node s), one surface per material group unless the surface names
 /// a material.
 void readMeshSurface(const Node& s, const Surface& surface, const std::string& baseDir,
@@ -176,6 +211,7 @@ void readMeshSurface(const Node& s, const Surface& surface, const std::string& b
   std::filesystem::path full = std::filesystem::path(baseDir) / file;
   glm::dmat4 transform = s.has("transform") ? readTransform(s["transform"]) : glm::dmat4(1.0);
   auto groups = readMeshFile(full.string(), s["mesh"].where());
+  dropRepeatedFaces(groups, s, scene.warnings);
   int fixedMaterial = s.has("material") ? materialIndex(s["material"], scene) : -1;
   if (fixedMaterial >= 0) groups = merged(std::move(groups));
   for (auto& group : groups) addGroupSurface(s, surface, group, fixedMaterial, transform, scene);
@@ -184,7 +220,10 @@ void readMeshSurface(const Node& s, const Surface& surface, const std::string& b
 /// Surface i (node s) with its name (unique among `names`), place and sides.
 Surface namedSurface(const Node& s, size_t i, std::set<std::string>& names) {
   Surface surface;
-  surface.name = s.has("name") ? s["name"].string() : "surface" + std::to_string(i);
+  // Unnamed: a mesh file's surfaces take its name (CornellBox-Original/floor), others a number.
+  const std::string fallback = s.has("mesh") ? std::filesystem::path(s["mesh"].string()).stem().string()
+                                             : "surface" + std::to_string(i);
+  surface.name = s.has("name") ? s["name"].string() : fallback;
   if (!names.insert(surface.name).second) s["name"].fail("a name no other surface has");
   surface.twoSided = s.has("two_sided") && s["two_sided"].boolean();
   surface.where = s.where();
