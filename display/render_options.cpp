@@ -11,6 +11,7 @@
 
 #include "display/viewer_internal.h"
 #include "mesh/camera.h"
+#include "mesh/default_camera.h"
 #include "mesh/error.h"
 
 namespace rad::viewer {
@@ -137,7 +138,7 @@ Camera parseCamera(const std::string& text, const Camera& base) {
 Camera effectiveCamera(const ResultFile& mesh, const RenderOptions& options) {
   if (options.camera) return *options.camera;
   if (mesh.camera) return *mesh.camera;
-  return defaultCamera(mesh.boundsMin, mesh.boundsMax);
+  return defaultCamera(mesh);
 }
 
 double effectiveExposure(const ResultFile& mesh, const RenderOptions& options) {

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <sstream>
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -21,24 +20,20 @@ std::string fmt(double v) {
 
 }  // namespace
 
-Camera defaultCamera(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax) {
+Camera framingCamera(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax, const glm::dvec3& towardsEye) {
   Camera c;
   c.fovYDeg = 45;
   c.target = (boundsMin + boundsMax) * 0.5;
   double radius = glm::length(boundsMax - boundsMin) * 0.5;
   if (!(radius > 0)) radius = kPointBoxRadius;
   const double distance = radius / std::sin(glm::radians(c.fovYDeg) * 0.5);
-  c.eye = c.target - glm::dvec3(0, 0, distance);
+  c.eye = c.target + glm::normalize(towardsEye) * distance;
   c.up = glm::dvec3(0, 1, 0);
   return c;
 }
 
-Camera defaultCamera(const Scene& scene) {
-  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
-  for (const auto& s : scene.surfaces)
-    for (const auto& p : s.polygons)
-      for (const auto& q : p.outer) lo = glm::min(lo, q), hi = glm::max(hi, q);
-  return defaultCamera(lo, hi);
+Camera defaultCamera(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax) {
+  return framingCamera(boundsMin, boundsMax, glm::dvec3(0, 0, -1));
 }
 
 void checkCamera(const Camera& c, const std::string& where) {

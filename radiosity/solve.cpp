@@ -5,6 +5,7 @@
 #include <glm/common.hpp>
 
 #include "mesh/color.h"
+#include "mesh/default_camera.h"
 #include "mesh/error.h"
 #include "radiosity/result.h"
 

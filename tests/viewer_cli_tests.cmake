@@ -10,15 +10,17 @@ file(MAKE_DIRECTORY ${VIEWER_OUT})
 set(VIEWER_INPUT ${CMAKE_CURRENT_SOURCE_DIR}/data/cornell_coarse_result.ply)
 set(VIEWER_MESH_ONLY ${CMAKE_CURRENT_SOURCE_DIR}/data/good_small_mesh_only.ply)
 
-add_executable(viewer_test viewer_test.cpp)
-target_link_libraries(viewer_test PRIVATE rad::viewer GTest::gtest_main)
+add_executable(viewer_test viewer_test.cpp default_view_test.cpp)
+target_link_libraries(viewer_test PRIVATE rad::viewer GTest::gtest_main nlohmann_json::nlohmann_json)
 target_compile_definitions(viewer_test PRIVATE
+  RAD_RADIOSITY_CLI="$<TARGET_FILE:radiosity_cli>"
+  RAD_RADVIEW_CLI="$<TARGET_FILE:radview>"
   RAD_VIEWER_INPUT="${VIEWER_INPUT}"
   RAD_VIEWER_OUT="${VIEWER_OUT}"
   RAD_SCENES="${PROJECT_SOURCE_DIR}/scenes"
   RAD_GOLDEN_DIR="${CMAKE_CURRENT_SOURCE_DIR}/golden"
   RAD_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-add_dependencies(viewer_test radview)
+add_dependencies(viewer_test radview radiosity_cli)
 gtest_discover_tests(viewer_test)
 
 # name, expected exit code, stderr regex, output file or "", then the arguments ("OUT/" is the
