@@ -179,7 +179,7 @@ void runSolve(const SolveOptions& o) {
 void addStopFlags(CLI::App& sub, SolverBlock& flags) {
   sub.add_option("--tolerance", flags.tolerance,
                  "Stop when unshot/emitted power falls below this (solver.tolerance; default 1e-3; as the final "
-                 "gather's start 1e-2 or one shot per patch, whichever comes first)")
+                 "gather's start 1e-2 or a tenth of a shot per patch, whichever comes first)")
       ->check(CLI::Range(1e-300, 1.0));
   sub.add_option("--max-shots", flags.maxShots, "Stop after this many shots (solver.max_shots)")
       ->check(CLI::PositiveNumber);
