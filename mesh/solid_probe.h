@@ -8,10 +8,11 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/planar_pieces.h"
+#include "mesh/surface_rays.h"
 
 namespace rad::meshing {
 
-/// Rays against a set of pieces, through a bounding-volume hierarchy over their boxes.
+/// Rays against a set of pieces (mesh/surface_rays.h over their polygons).
 class SolidProbe {
  public:
   /// Indexes `pieces` (their points in `table`); the scene says which surfaces are two-sided.
@@ -24,27 +25,9 @@ class SolidProbe {
   bool insideSolid(const glm::dvec3& p, const glm::dvec3& normal) const;
 
  private:
-  struct Node {
-    glm::dvec3 lo, hi;
-    int first = 0, count = 0;  ///< a leaf's pieces in order_; count 0: an inner node
-    int right = 0;             ///< an inner node's second child (its first follows it)
-  };
-  struct Hit {
-    int piece = -1;
-    double t = 0;
-  };
-
-  int build(int first, int count);
-  Hit firstHit(const glm::dvec3& origin, const glm::dvec3& dir) const;
-  void hitLeaf(const Node& node, const glm::dvec3& origin, const glm::dvec3& dir, Hit& best) const;
-  bool hitsPiece(int piece, const glm::dvec3& origin, const glm::dvec3& dir, double& t) const;
-
-  std::vector<PlaneFrame> frames_;
-  std::vector<Polygon2> rings_;     ///< each piece's rings in its frame
+  std::vector<Polygon> polygons_;  ///< the pieces as polygons (first ring outer, others holes)
   std::vector<bool> twoSided_;
-  std::vector<glm::dvec3> lo_, hi_;  ///< each piece's box
-  std::vector<int> order_;
-  std::vector<Node> nodes_;
+  SurfaceRays rays_;
   double offset_ = 0;  ///< how far off the surface the rays start
 };
 
