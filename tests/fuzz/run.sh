@@ -7,7 +7,7 @@ set -euo pipefail
 build=${1:?usage: run.sh BUILD [SECONDS [TARGET...]]}
 seconds=${2:-60}
 shift $(( $# < 2 ? $# : 2 ))
-targets=(scene obj ply off result reference)
+targets=(scene obj ply off gltf result reference)
 [ $# -eq 0 ] || targets=("$@")
 root=$(cd "$(dirname "$0")/../.." && pwd)
 declare -A seeds=(
@@ -15,6 +15,7 @@ declare -A seeds=(
   [obj]="$root/tests/data/*.obj $root/tests/data/bad/*.obj"
   [ply]="$root/tests/data/*.ply $root/tests/data/bad/ply_*.ply"
   [off]="$root/tests/data/*.off $root/tests/data/bad/*.off"
+  [gltf]="$root/tests/data/*.gltf $root/tests/data/*.glb"
   [result]="$root/tests/data/*.ply $root/tests/data/bad/result_*.ply"
   [reference]="$root/docs/cornell_reference.csv $root/tests/data/bad/bad_reference.csv"
 )
