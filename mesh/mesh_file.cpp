@@ -76,16 +76,11 @@ size_t faceCount(const std::vector<MeshFileGroup>& groups) {
 /// The groups of the mesh file at `path` (`ext` its checked extension); an error names the
 /// scene's place (`where`), then the file's.
 std::vector<MeshFileGroup> readMeshGroups(const std::string& path, const std::string& ext,
-                                          const std::string& where) {
+                                          const std::string& where, std::vector<std::string>& notes) {
   try {
     inputFileSize(path, "a readable mesh file");  // a FIFO or a folder: say so before reading
-    if (ext == "gltf" || ext == "glb") {
-      // What the glTF reader approximated (textures, metals, white, lines) needs a way out of
-      // readMeshFile into the scene's warnings (mesh_file.h, scene_surfaces.cpp); unsaid until then.
-      std::vector<std::string> approximations;
-      return readGltfFile(path, approximations);
-    }
-    return ext == "obj" ? readObjFile(path) : ext == "ply" ? readPlyMesh(path) : readOffFile(path);
+    if (ext == "gltf" || ext == "glb") return readGltfFile(path, notes);
+    return ext == "obj" ? readObjFile(path, notes) : ext == "ply" ? readPlyMesh(path) : readOffFile(path);
   } catch (const InputError& e) {
     throw InputError(where + ": " + e.what());  // the scene's place, then the file's
   }
@@ -94,7 +89,13 @@ std::vector<MeshFileGroup> readMeshGroups(const std::string& path, const std::st
 }  // namespace
 
 std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where) {
-  std::vector<MeshFileGroup> groups = readMeshGroups(path, checkMeshPath(path, where), where);
+  std::vector<std::string> unsaid;
+  return readMeshFile(path, where, unsaid);
+}
+
+std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where,
+                                        std::vector<std::string>& notes) {
+  std::vector<MeshFileGroup> groups = readMeshGroups(path, checkMeshPath(path, where), where, notes);
   if (faceCount(groups) == 0)
     throw inputError(where + ": " + path, "a mesh file with faces",
                      "none that parse (a damaged or empty file)");

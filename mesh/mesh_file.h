@@ -15,8 +15,15 @@ struct MeshFileGroup {
   std::vector<Polygon> faces;
 };
 
-/// Reads an OBJ (faces grouped by MTL material), PLY or OFF file (one group).
-/// `where` prefixes error messages. Throws InputError if the file is missing or does not parse.
+/// Reads an OBJ (faces grouped by MTL material), PLY, OFF or glTF file (one group, or one per
+/// node and material). `where` prefixes error messages. Throws InputError if the file is
+/// missing or does not parse. What the reader approximated (a material's specular or
+/// transparent part left out, a texture taken as its mean colour) is added to `notes`, a
+/// sentence per kind naming the materials.
+std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where,
+                                        std::vector<std::string>& notes);
+
+/// The same, the notes left unsaid (tests and fuzzing).
 std::vector<MeshFileGroup> readMeshFile(const std::string& path, const std::string& where);
 
 }  // namespace rad

@@ -1,8 +1,10 @@
 #include "mesh/obj_reader.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -13,6 +15,7 @@
 #include "mesh/error.h"
 #include "mesh/input_file.h"
 #include "mesh/number_text.h"
+#include "mesh/texture_mean.h"
 
 namespace rad {
 namespace {
@@ -237,22 +240,90 @@ void addShapeFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attri
   }
 }
 
-/// The group takes the MTL material's name and colours (Kd, Ke: finite).
-void nameGroup(const tinyobj::material_t& m, const std::string& path, MeshFileGroup& group) {
+/// At most this much texture file per material.
+constexpr uint64_t kMaxTextureBytes = uint64_t(256) << 20;
+
+/// What reading the materials approximated, said once per file.
+struct Approximations {
+  std::vector<std::string> textured, unreadTextures, diffuseOnly;
+  size_t diffuseOnlyFaces = 0;
+};
+
+/// The largest channel.
+double largest(const glm::dvec3& c) { return std::max({c.x, c.y, c.z}); }
+
+/// Material m's diffuse texture (map_Kd, beside the OBJ) as its mean colour times Kd (the
+/// texture alone where Kd is black, as when the MTL leaves it out); Kd where the texture cannot
+/// be read, which `said` notes.
+glm::dvec3 texturedDiffuse(const tinyobj::material_t& m, const glm::dvec3& kd, const std::string& path,
+                           Approximations& said) {
+  const std::string file = besideFile(path, m.diffuse_texname);
+  try {
+    const std::string bytes = readInputFile(file, "the texture (map_Kd) of material " + m.name, kMaxTextureBytes, false);
+    const glm::dvec3 mean = meanLinearColour(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), file);
+    said.textured.push_back(m.name);
+    return mean * (largest(kd) > 0 ? kd : glm::dvec3(1.0));
+  } catch (const InputError& e) {
+    said.unreadTextures.push_back(m.name + " (" + e.what() + ")");
+    return kd;
+  }
+}
+
+/// Why material m is more than its diffuse part (`kd`): its specular part outweighs it, or it is
+/// transparent (d < 1, or an MTL illumination model with refraction or transparency); or "".
+std::string beyondDiffuse(const tinyobj::material_t& m, const glm::dvec3& kd) {
+  const glm::dvec3 ks(m.specular[0], m.specular[1], m.specular[2]);
+  char why[96] = "";
+  if (m.dissolve < 1 || m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9)
+    std::snprintf(why, sizeof why, "transparent: illum %d, d %g", m.illum, double(m.dissolve));
+  else if (largest(ks) > largest(kd))
+    std::snprintf(why, sizeof why, "Ks %g above Kd %g", largest(ks), largest(kd));
+  return why;
+}
+
+/// The group takes the MTL material's name and colours (Kd, or its texture's mean; Ke: finite),
+/// and notes what was approximated.
+void nameGroup(const tinyobj::material_t& m, const std::string& path, MeshFileGroup& group, Approximations& said) {
   group.material = m.name;
   group.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
   group.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
+  if (!m.diffuse_texname.empty()) group.kd = texturedDiffuse(m, *group.kd, path, said);
+  const std::string why = beyondDiffuse(m, *group.kd);
+  if (why.empty()) return;
+  said.diffuseOnly.push_back(m.name + " (" + why + ")");
+  said.diffuseOnlyFaces += group.faces.size();
 }
 
-/// The groups in material order, each named with its MTL material's name and colours.
+/// The names, comma-separated.
+std::string listed(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+/// What was approximated, a sentence per kind.
+void addNotes(const Approximations& said, std::vector<std::string>& notes) {
+  if (!said.diffuseOnly.empty())
+    notes.push_back(std::to_string(said.diffuseOnlyFaces) + " faces of material(s) " + listed(said.diffuseOnly) +
+                    " are treated as their diffuse part (Kd): this solver shows diffuse light only");
+  if (!said.textured.empty())
+    notes.push_back("material(s) " + listed(said.textured) + " take their map_Kd texture's mean colour (times Kd)");
+  if (!said.unreadTextures.empty())
+    notes.push_back("material(s) " + listed(said.unreadTextures) + ": texture not read, Kd used");
+}
+
+/// The groups in material order, each named with its MTL material's name and colours; what
+/// that approximated goes into `notes`.
 std::vector<MeshFileGroup> namedGroups(std::map<int, MeshFileGroup>& groups,
                                        const std::vector<tinyobj::material_t>& materials,
-                                       const std::string& path) {
+                                       const std::string& path, std::vector<std::string>& notes) {
   std::vector<MeshFileGroup> out;
+  Approximations said;
   for (auto& [id, group] : groups) {
-    if (id >= 0) nameGroup(materials[size_t(id)], path, group);
+    if (id >= 0) nameGroup(materials[size_t(id)], path, group, said);
     out.push_back(std::move(group));
   }
+  addNotes(said, notes);
   return out;
 }
 
@@ -266,14 +337,14 @@ std::map<int, MeshFileGroup> facesByMaterial(const tinyobj::ObjReader& reader, c
 
 }  // namespace
 
-std::vector<MeshFileGroup> readObjFile(const std::string& path) {
+std::vector<MeshFileGroup> readObjFile(const std::string& path, std::vector<std::string>& notes) {
   const std::string obj = readInputFile(path, "a Wavefront OBJ file");
   checkObjText(obj, path, false);
   tinyobj::ObjReader reader;
   parseObj(obj, path, reader);
   checkFiniteVertices(reader.GetAttrib(), path);
   std::map<int, MeshFileGroup> groups = facesByMaterial(reader, path);
-  return namedGroups(groups, reader.GetMaterials(), path);
+  return namedGroups(groups, reader.GetMaterials(), path, notes);
 }
 
 }  // namespace rad

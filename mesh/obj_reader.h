@@ -10,7 +10,10 @@
 namespace rad {
 
 /// An OBJ file's faces grouped by MTL material (the faces without one in a group of their
-/// own, first). Throws InputError naming the file, line or face and what was found.
-std::vector<MeshFileGroup> readObjFile(const std::string& path);
+/// own, first). A material with a diffuse texture (map_Kd) takes its mean colour times Kd; one
+/// whose specular part outweighs its diffuse one, or that is transparent, keeps its diffuse
+/// part: both are said in `notes`. Throws InputError naming the file, line or face and what was
+/// found.
+std::vector<MeshFileGroup> readObjFile(const std::string& path, std::vector<std::string>& notes);
 
 }  // namespace rad

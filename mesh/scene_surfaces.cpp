@@ -210,7 +210,9 @@ void readMeshSurface(const Node& s, const Surface& surface, const std::string& b
   std::string file = s["mesh"].string();
   std::filesystem::path full = std::filesystem::path(baseDir) / file;
   glm::dmat4 transform = s.has("transform") ? readTransform(s["transform"]) : glm::dmat4(1.0);
-  auto groups = readMeshFile(full.string(), s["mesh"].where());
+  std::vector<std::string> notes;
+  auto groups = readMeshFile(full.string(), s["mesh"].where(), notes);
+  for (const std::string& note : notes) scene.warnings.push_back(s.where() + " (" + file + "): " + note);
   dropRepeatedFaces(groups, s, scene.warnings);
   int fixedMaterial = s.has("material") ? materialIndex(s["material"], scene) : -1;
   if (fixedMaterial >= 0) groups = merged(std::move(groups));

@@ -49,6 +49,26 @@ TEST(MeshFileTest, RepeatedFacesAreDroppedAndSaidOnce) {
   EXPECT_NE(s.warnings[0].find("dropped 2 face(s) repeating an earlier face"), std::string::npos) << s.warnings[0];
 }
 
+/// MTL materials beyond a diffuse colour: a texture's mean colour (sRGB decoded to linear, times
+/// Kd), a texture that cannot be read (Kd, said), a mirror and a glass (their diffuse part, said
+/// once with the count of their faces).
+TEST(MeshFileTest, MtlApproximationsAreTakenAndSaid) {
+  const Scene s = parseInData(R"({"version": 1, "surfaces": [{"mesh": "textured.obj"}]})");
+  ASSERT_EQ(s.surfaces.size(), 4u);
+  const glm::dvec3 painted = s.materials[size_t(s.surfaces[0].material)].reflectance;
+  EXPECT_NEAR(painted.x, 0.4, 1e-9);  // (1 + 0) / 2 · 0.8: pure red and pure blue decode exactly
+  EXPECT_NEAR(painted.y, 0.0, 1e-9);
+  EXPECT_NEAR(painted.z, 0.4, 1e-9);
+  EXPECT_EQ(s.materials[size_t(s.surfaces[1].material)].reflectance, glm::dvec3(0.5));
+  std::string all;
+  for (const auto& w : s.warnings) all += w + "\n";
+  EXPECT_EQ(s.warnings.size(), 3u) << all;
+  EXPECT_NE(all.find("2 faces of material(s) mirror (Ks 0.95 above Kd 0.01), glass (transparent"), std::string::npos) << all;
+  EXPECT_NE(all.find("painted take their map_Kd texture's mean colour"), std::string::npos) << all;
+  EXPECT_NE(all.find("lost (") , std::string::npos) << all;
+  EXPECT_NE(all.find("texture not read, Kd used"), std::string::npos) << all;
+}
+
 /// McGuire's box as a user gets it from its one-line scene: the two warnings a user can act on
 /// (the bent left wall; the blocks' "bottom" faces, which repeat a side in the file) and nothing
 /// else on the terminal (no library's message); no vertex shared round a block's edge; every
