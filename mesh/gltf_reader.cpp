@@ -214,11 +214,18 @@ std::string nameOr(const std::string& name, const std::string& kind, int index) 
   return name.empty() ? kind + std::to_string(index) : name;
 }
 
+/// The items in a list: a, b.
+std::string joined(const std::set<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
 /// A list of names in quotes: 'a', 'b'.
 std::string quoted(const std::set<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "'" : ", '") + n + "'";
-  return out;
+  std::set<std::string> inQuotes;
+  for (const auto& n : names) inQuotes.insert("'" + n + "'");
+  return joined(inQuotes);
 }
 
 // ---- Materials ---------------------------------------------------------------------------------
@@ -228,6 +235,7 @@ struct GltfMaterial {
   std::string name;
   glm::dvec3 kd{1.0}, ke{0.0};  ///< reflectance; emitted radiance
   bool textured = false, metallic = false, transmissive = false, white = false;
+  std::string unreadTexture;  ///< why its base-colour texture could not be read, if so
 };
 
 /// baseColorFactor's RGB (white when absent), each in [0, 1].
@@ -312,7 +320,8 @@ class GltfReader {
   std::vector<uint64_t> indices(const tinygltf::Primitive& p, size_t vertices, const std::string& where) const;
   const GltfMaterial& material(int index);
   GltfMaterial readMaterial(int index) const;
-  glm::dvec3 textureMean(int texture, const std::string& where) const;
+  Bytes imageBytes(int texture, const std::string& where, std::string& label) const;
+  void applyTexture(int texture, const std::string& where, GltfMaterial& m) const;
   MeshFileGroup& group(const std::string& label, const GltfMaterial& m, int index);
 
   tinygltf::Model model_;
@@ -498,8 +507,7 @@ GltfMaterial GltfReader::readMaterial(int index) const {
   const std::string where = path_ + ": material '" + out.name + "'";
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
   out.kd = baseColourFactor(pbr, where + ": baseColorFactor");
-  out.textured = pbr.baseColorTexture.index >= 0;
-  if (out.textured) out.kd *= textureMean(pbr.baseColorTexture.index, where + ": baseColorTexture");
+  if (pbr.baseColorTexture.index >= 0) applyTexture(pbr.baseColorTexture.index, where + ": baseColorTexture", out);
   out.white = capWhite(out.kd);
   out.ke = emittedRadiance(m, where);
   out.metallic = pbr.metallicFactor > kMetallic;
@@ -507,19 +515,30 @@ GltfMaterial GltfReader::readMaterial(int index) const {
   return out;
 }
 
-/// The linear mean colour of texture `texture`'s image (a file, a data URI or a buffer view).
-glm::dvec3 GltfReader::textureMean(int texture, const std::string& where) const {
+/// The encoded bytes of texture `texture`'s image (a file, a data URI or a buffer view; none
+/// when its file could not be read), and its name for messages in `label`.
+Bytes GltfReader::imageBytes(int texture, const std::string& where, std::string& label) const {
   const tinygltf::Texture& t = item(model_.textures, texture, "texture", where);
   const std::string at = where + ": texture " + std::to_string(texture) + ": source";
   const tinygltf::Image& image = item(model_.images, t.source, "PNG or JPEG image", at);
-  const std::string imageAt =
-      path_ + ": image " + (image.uri.empty() ? std::to_string(t.source) : "'" + image.uri + "'");
-  if (image.bufferView >= 0) {
-    const Bytes bytes = viewBytes(image.bufferView, imageAt + ": bufferView");
-    return meanLinearColour(bytes.data, bytes.size, imageAt);
+  label = image.uri.empty() ? "image " + std::to_string(t.source) : "'" + image.uri + "'";
+  if (image.bufferView >= 0) return viewBytes(image.bufferView, path_ + ": " + label + ": bufferView");
+  return {image.image.data(), image.image.size()};
+}
+
+/// The material's base colour times the linear mean colour of texture `texture`; when the image
+/// cannot be read or decoded (a texture missing beside a downloaded file), the factor alone,
+/// and why in `unreadTexture`. A texture the file names wrongly is an error.
+void GltfReader::applyTexture(int texture, const std::string& where, GltfMaterial& m) const {
+  std::string label;
+  const Bytes bytes = imageBytes(texture, where, label);
+  try {
+    if (bytes.size == 0) throw inputError(label, "an image file beside the glTF file", "none that could be read");
+    m.kd *= meanLinearColour(bytes.data, bytes.size, label);
+    m.textured = true;
+  } catch (const InputError& e) {
+    m.unreadTexture = e.what();
   }
-  if (image.image.empty()) throw inputError(imageAt, "an image file beside the glTF file", "none that could be read");
-  return meanLinearColour(image.image.data(), image.image.size(), imageAt);
 }
 
 /// The group of (node label, material `index`), made on first use: "<label>/<material>".
@@ -535,10 +554,11 @@ MeshFileGroup& GltfReader::group(const std::string& label, const GltfMaterial& m
 }
 
 std::vector<std::string> GltfReader::warnings() const {
-  std::set<std::string> textured, white, approximated;
+  std::set<std::string> textured, unread, white, approximated;
   size_t approximatedFaces = 0;
   for (const auto& [index, m] : materials_) {
     if (m.textured) textured.insert(m.name);
+    if (!m.unreadTexture.empty()) unread.insert("'" + m.name + "' (" + m.unreadTexture + ")");
     if (m.white) white.insert(m.name);
     if (m.metallic || m.transmissive) approximatedFaces += facesOf_.at(index);
     if (m.metallic) approximated.insert(m.name + " (metallic)");
@@ -546,17 +566,20 @@ std::vector<std::string> GltfReader::warnings() const {
   }
   std::vector<std::string> out;
   if (!textured.empty())
-    out.push_back(path_ + ": materials " + quoted(textured) + ": reflectance is the mean colour of the base-colour "
-                  "texture times baseColorFactor (a radiosity solve keeps no texture detail)");
+    out.push_back("materials " + quoted(textured) + ": reflectance is the mean colour of the base-colour texture "
+                  "times baseColorFactor (a radiosity solve keeps no texture detail)");
+  if (!unread.empty())
+    out.push_back("materials " + joined(unread) + ": base-colour texture not read, baseColorFactor alone is the "
+                  "reflectance (put the image beside the glTF file)");
   if (!approximated.empty())
-    out.push_back(path_ + ": " + std::to_string(approximatedFaces) + " faces of materials " + quoted(approximated) +
+    out.push_back(std::to_string(approximatedFaces) + " faces of materials " + quoted(approximated) +
                   " treated as diffuse with their base colour (radiosity has no mirrors or glass; set metallicFactor "
                   "to 0 and leave out KHR_materials_transmission to say so in the file)");
   if (!white.empty())
-    out.push_back(path_ + ": materials " + quoted(white) + ": base colour 1 (white) would reflect all light; taken as "
+    out.push_back("materials " + quoted(white) + ": base colour 1 (white) would reflect all light; taken as "
                   "reflectance 0.95 (hue kept); give a baseColorFactor below 1 to choose");
   if (leftOut_)
-    out.push_back(path_ + ": left out " + std::to_string(leftOut_) + " primitives drawn as points or lines (not "
+    out.push_back("left out " + std::to_string(leftOut_) + " primitives drawn as points or lines (not "
                   "surfaces) in meshes " + quoted(pointsAndLines_));
   return out;
 }

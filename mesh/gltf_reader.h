@@ -13,10 +13,11 @@ namespace rad {
 /// grouped by node and material, coplanar neighbours merged back into polygons
 /// (mesh/coplanar_faces.h): group "<node>/<material>", `kd` the base colour (its texture's
 /// mean colour times baseColorFactor), `ke` emissiveFactor × KHR_materials_emissive_strength
-/// (radiance, as MTL Ke). What was approximated (textures, metals, glass, white, points and
-/// lines left out) is said once per file in `warnings`. Throws InputError naming the file and
-/// what was expected and found (a missing buffer or texture, an accessor out of its buffer,
-/// indices beyond the vertices, NaN positions).
+/// (radiance, as MTL Ke). What was approximated (textures as their mean, an unreadable one left
+/// out, metals, glass, white, points and lines left out) is said once per file in `warnings`, a
+/// sentence per kind naming the materials or meshes. Throws InputError naming the file and what
+/// was expected and found (malformed JSON or GLB, a missing buffer, an index or accessor out of
+/// range, NaN positions).
 std::vector<MeshFileGroup> readGltfFile(const std::string& path, std::vector<std::string>& warnings);
 
 }  // namespace rad

@@ -310,13 +310,22 @@ TEST(GltfReaderTest, NanPositionIsAnError) {
   expectBad("nan.gltf", g.text(), {"POSITION accessor 0: vertex 1", "finite coordinates"});
 }
 
-TEST(GltfReaderTest, MissingBufferOrTextureIsAnError) {
+TEST(GltfReaderTest, MissingBufferIsAnError) {
   expectBad("nobin.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "absent.bin"}]})",
             {"whose buffers load", "absent.bin"});
+}
+
+// A texture missing beside a downloaded file (as an OBJ's map_Kd): its factor alone, said once.
+TEST(GltfReaderTest, MissingTextureLeavesTheFactorWithAWarning) {
   SmallGltf g;
-  g.materials = R"([{"name": "tex", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}])";
+  g.materials = R"([{"name": "tex", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1],
+                    "baseColorTexture": {"index": 0}, "metallicFactor": 0}}])";
   g.extra = R"("textures": [{"source": 0}], "images": [{"uri": "absent.png"}], )";
-  expectBad("missing_texture.gltf", g.text(), {"image 'absent.png'", "an image file"});
+  const Read r = readText("missing_texture.gltf", g.text());
+  EXPECT_EQ(*r.groups.at(0).kd, glm::dvec3(0.5, 0.25, 0.125));
+  EXPECT_TRUE(warned(r.warnings, {"'tex'", "'absent.png'", "baseColorFactor alone"}));
+  g.extra = R"("textures": [{"source": 7}], "images": [{"uri": "absent.png"}], )";
+  expectBad("bad_source.gltf", g.text(), {"texture 0: source", "image index from 0 to 0", "found 7"});
 }
 
 TEST(GltfReaderTest, TruncatedGlbIsAnError) {
