@@ -88,21 +88,30 @@ struct DirectLight::Rays {
   /// Embree's scene of every element of the mesh, normalised to its bounding box.
   void build(const PatchMesh& mesh);
 
-  /// Whether the segment from a to b (scene coordinates) is blocked.
-  bool blocked(const glm::dvec3& a, const glm::dvec3& b) const {
+  /// The segment from a to b (scene coordinates) as Embree's ray, normalised.
+  RTCRay segment(const glm::dvec3& a, const glm::dvec3& b) const {
     const glm::dvec3 o = (a - centre) / scale, d = (b - a) / scale;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    alignas(16) RTCRay ray{};
+    RTCRay ray{};
     ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
     ray.dir_x = float(d.x), ray.dir_y = float(d.y), ray.dir_z = float(d.z);
     ray.tnear = 0.0f;
     ray.tfar = 1.0f;
     ray.mask = 0xFFFFFFFFu;
-    ray.flags = 0;
-    ray.time = 0;
-    rtcOccluded1(scene, &context, &ray);
-    return ray.tfar < 0;
+    return ray;
+  }
+
+  /// Whether each segment from a to a point of `to` is blocked, as one stream of rays from one
+  /// origin (Embree traces them together, coherent).
+  void blocked(const glm::dvec3& a, const std::vector<glm::dvec3>& to, std::vector<char>& out) const {
+    std::vector<RTCRay> rays;
+    rays.reserve(to.size());
+    for (const glm::dvec3& b : to) rays.push_back(segment(a, b));
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    if (!rays.empty()) rtcOccluded1M(scene, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+    out.resize(to.size());
+    for (size_t k = 0; k < rays.size(); ++k) out[k] = rays[k].tfar < 0;
   }
 };
 
@@ -223,10 +232,22 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
          (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
 }
 
-bool DirectLight::sampleVisible(const Probe& probe, const glm::dvec3& origin, int j, long& raysCast) const {
-  if (probe.visible) return (*probe.visible)[size_t(j / 64)] >> (j % 64) & 1;
-  ++raysCast;
-  return !rays_impl_->blocked(origin, points_[size_t(j)]);
+std::vector<char> DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin,
+                                              const std::vector<int>& samples, long& raysCast) const {
+  std::vector<char> visible(samples.size());
+  if (probe.visible) {
+    for (size_t k = 0; k < samples.size(); ++k)
+      visible[k] = (*probe.visible)[size_t(samples[k] / 64)] >> (samples[k] % 64) & 1;
+    return visible;
+  }
+  std::vector<glm::dvec3> to;
+  to.reserve(samples.size());
+  for (int j : samples) to.push_back(points_[size_t(j)]);
+  std::vector<char> blocked;
+  rays_impl_->blocked(origin, to, blocked);
+  raysCast += long(samples.size());
+  for (size_t k = 0; k < samples.size(); ++k) visible[k] = !blocked[k];
+  return visible;
 }
 
 void DirectLight::addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
@@ -239,23 +260,28 @@ void DirectLight::addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, 
   // The visible share of the light: each sample weighted by its own differential factor,
   // cosθ·cosθ'/r² (samples stand for equal areas), so that near a light its close parts
   // count more; the exact unoccluded factor F carries the magnitude.
-  int above = 0;
-  double all = 0, visible = 0;
+  std::vector<int> above;
+  std::vector<double> weight;
+  double all = 0;
   for (int j = light.first; j < light.first + light.count; ++j) {
     const glm::dvec3 d = onLight_[size_t(j)] - p;
     const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
     if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
-    const double w = cosHere * cosThere / (r2 * r2);
-    ++above;
-    all += w;
-    if (!sampleVisible(probe, p, j, raysCast)) continue;
-    visible += w;
-    out.visible[size_t(j / 64)] |= uint64_t(1) << (j % 64);
+    above.push_back(j);
+    weight.push_back(cosHere * cosThere / (r2 * r2));
+    all += weight.back();
   }
-  if (above == 0 || !(all > 0)) return;
+  if (above.empty() || !(all > 0)) return;
+  const std::vector<char> visible = samplesVisible(probe, p, above, raysCast);
+  double seen = 0;
+  for (size_t k = 0; k < above.size(); ++k) {
+    if (!visible[k]) continue;
+    seen += weight[k];
+    out.visible[size_t(above[k] / 64)] |= uint64_t(1) << (above[k] % 64);
+  }
   const glm::dvec3 full = probe.rho * light.emission * F;
-  out.radiosity += full * (visible / all);
-  out.weight[t] = float(luminance(full) / above);  // the mean sample's share
+  out.radiosity += full * (seen / all);
+  out.weight[t] = float(luminance(full) / double(above.size()));  // the mean sample's share
 }
 
 VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {

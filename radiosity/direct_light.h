@@ -84,8 +84,9 @@ class DirectLight {
   void addLight(const PatchMesh& mesh, int p, int count);
   /// Adds a sample point on a light with unit normal `normal`.
   void addSample(const glm::dvec3& at, const glm::dvec3& normal);
-  /// Whether sample j is visible from `origin` (given by the probe, or by a ray).
-  bool sampleVisible(const Probe& probe, const glm::dvec3& origin, int j, long& raysCast) const;
+  /// Whether each of the samples is visible from `origin` (given by the probe, or by rays).
+  std::vector<char> samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
+                                   long& raysCast) const;
   /// Adds light t's share seen from p (the probe's ray origin) to `out`.
   void addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
                   long& raysCast) const;
