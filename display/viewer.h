@@ -56,8 +56,8 @@ struct Image {
   std::vector<float> radiance;  ///< 3 floats per pixel, linear B/π; empty unless asked for
 };
 
-/// The camera used for a render: options.camera, else the file's, else defaultCamera of the
-/// mesh's bounding box (mesh/camera.h: a view along +z).
+/// The camera used for a render: options.camera, else the file's, else one chosen from the
+/// result's triangles as for a scene without a camera (mesh/default_camera.h).
 Camera effectiveCamera(const ResultFile& mesh, const RenderOptions& options);
 /// The exposure used for a render: options.exposure, else the file's, else 1.
 double effectiveExposure(const ResultFile& mesh, const RenderOptions& options);

@@ -15,8 +15,8 @@ struct MeshFileGroup {
   std::vector<Polygon> faces;
 };
 
-/// Reads an OBJ (faces grouped by MTL material), PLY, OFF or glTF file (one group, or one per
-/// node and material). `where` prefixes error messages. Throws InputError if the file is
+/// Reads an OBJ (faces grouped by MTL material), PLY or OFF file (one group), or a glTF file
+/// (one group per node and material, coplanar triangles merged back into polygons). `where` prefixes error messages. Throws InputError if the file is
 /// missing or does not parse. What the reader approximated (a material's specular or
 /// transparent part left out, a texture taken as its mean colour) is added to `notes`, a
 /// sentence per kind naming the materials.
