@@ -101,19 +101,24 @@ bool isDegenerate(const Polygon& p) {
   return p.outer.size() < 3 || !hasArea(polygonArea(p), size);
 }
 
-/// Mesh files often carry a few zero-area faces; they carry no light, so they are
-/// dropped, and the loader says so.
-void dropDegenerateFaces(Surface& surface, const Node& s, std::vector<std::string>& warnings) {
+/// Mesh files often carry a few zero-area faces; they carry no light, so they are dropped,
+/// and the loader says so. False when nothing is left: a downloaded scene's sliver object (the
+/// whole of a mesh, collinear) is left out with a warning rather than refusing the scene.
+bool dropDegenerateFaces(Surface& surface, const Node& s, std::vector<std::string>& warnings) {
   checkFinite(surface, s);
   size_t before = surface.polygons.size();
   surface.polygons.erase(
       std::remove_if(surface.polygons.begin(), surface.polygons.end(), isDegenerate),
       surface.polygons.end());
-  if (surface.polygons.empty())
-    s["mesh"].failWith("faces of non-zero area", "only degenerate faces");
+  if (surface.polygons.empty()) {
+    warnings.push_back(s.where() + " (" + surface.name + "): every one of its " + std::to_string(before) +
+                       " faces has no area (collinear corners); the surface is left out");
+    return false;
+  }
   if (surface.polygons.size() != before)
     warnings.push_back(s.where() + ": dropped " +
                        std::to_string(before - surface.polygons.size()) + " degenerate faces");
+  return true;
 }
 
 /// The rings of "holes".
@@ -164,8 +169,7 @@ void addGroupSurface(const Node& s, Surface surface, MeshFileGroup& group, int f
     for (auto& p : face.outer) p = glm::dvec3(transform * glm::dvec4(p, 1.0));
     surface.polygons.push_back(std::move(face));
   }
-  dropDegenerateFaces(surface, s, scene.warnings);
-  scene.surfaces.push_back(std::move(surface));
+  if (dropDegenerateFaces(surface, s, scene.warnings)) scene.surfaces.push_back(std::move(surface));
 }
 
 /// The key of a face as a set of corners with a facing: equal for a face repeated with the
@@ -190,7 +194,7 @@ void dropRepeatedFaces(std::vector<MeshFileGroup>& groups, const Node& s, std::v
   for (auto& group : groups) {
     const size_t before = group.faces.size();
     group.faces.erase(std::remove_if(group.faces.begin(), group.faces.end(),
-                                     [&](const Polygon& f) { return !seen.insert(faceKey(f)).second; }),
+                                     [&](const Polygon& f) { return !isDegenerate(f) && !seen.insert(faceKey(f)).second; }),
                       group.faces.end());
     if (group.faces.size() == before) continue;
     dropped += before - group.faces.size();

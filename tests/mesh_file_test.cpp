@@ -49,6 +49,18 @@ TEST(MeshFileTest, RepeatedFacesAreDroppedAndSaidOnce) {
   EXPECT_NE(s.warnings[0].find("dropped 2 face(s) repeating an earlier face"), std::string::npos) << s.warnings[0];
 }
 
+/// A mesh file all of whose faces have no area (a downloaded scene's sliver object) is left out
+/// with a warning naming it; the rest of the scene loads.
+TEST(MeshFileTest, AllDegenerateMeshIsLeftOutNotTheScene) {
+  const Scene s = parseInData(R"({"version": 1, "materials": {"m": {"reflectance": [0.5, 0.5, 0.5]}},
+                                  "surfaces": [{"name": "sliver", "material": "m", "mesh": "all_degenerate.obj"},
+                                               {"name": "tiles", "mesh": "two_materials.obj"}]})");
+  ASSERT_EQ(s.surfaces.size(), 2u);  // the two of tiles
+  EXPECT_EQ(s.surfaces[0].name, "tiles/paint");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("(sliver): every one of its 2 faces has no area"), std::string::npos) << s.warnings[0];
+}
+
 /// MTL materials beyond a diffuse colour: a texture's mean colour (sRGB decoded to linear, times
 /// Kd), a texture that cannot be read (Kd, said), a mirror and a glass (their diffuse part, said
 /// once with the count of their faces).
