@@ -80,6 +80,21 @@ RingEdges insertRings(CDT& cdt, const Polygon2& polygon, const std::string& wher
   return ringEdges;
 }
 
+/// insertRings, but a mesh file's face whose contact lines cross each other (interpenetrating
+/// parts of one downloaded model) is meshed without them rather than refusing the scene.
+RingEdges insertFaceRings(CDT& cdt, const Polygon2& polygon, const std::string& where, bool meshFace) {
+  if (!meshFace || polygon.lines.empty()) return insertRings(cdt, polygon, where);
+  try {
+    return insertRings(cdt, polygon, where);
+  } catch (const InputError&) {
+    Polygon2 ringsOnly = polygon;
+    ringsOnly.lines.clear();
+    ringsOnly.lineIds.clear();
+    cdt.clear();
+    return insertRings(cdt, ringsOnly, where);
+  }
+}
+
 /// Whether edge i of face f (opposite its vertex i) is an edge of a ring.
 bool isRingEdge(const RingEdges& ringEdges, Face f, int i) {
   auto a = f->vertex(CDT::cw(i)), b = f->vertex(CDT::ccw(i));
@@ -257,7 +272,7 @@ Triangulation2 meshTriangleFace(const Polygon2& polygon, double maxEdge, const s
   const double longest = std::max({glm::length(t[1] - t[0]), glm::length(t[2] - t[1]), glm::length(t[0] - t[2])});
   const int m = int(std::ceil(longest / maxEdge));
   CDT cdt;
-  RingEdges ringEdges = insertRings(cdt, polygon, where);
+  RingEdges ringEdges = insertFaceRings(cdt, polygon, where, true);
   for (const glm::dvec2& q : latticeInside(polygon, t, m, longest)) cdt.insert(K::Point_2(q.x, q.y));
   markInside(cdt, ringEdges);
   return extract(cdt);
@@ -276,7 +291,7 @@ Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::s
   if (isGoodTriangle(polygon, maxEdge, meshFace)) return loneTriangle(polygon);
   if (meshFace && isTriangleFace(polygon)) return meshTriangleFace(polygon, maxEdge, where);
   CDT cdt;
-  std::vector<K::Point_2> seeds = markInside(cdt, insertRings(cdt, polygon, where));
+  std::vector<K::Point_2> seeds = markInside(cdt, insertFaceRings(cdt, polygon, where, meshFace));
   // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
   CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(0.125, maxEdge), true);
   return extract(cdt);

@@ -9,6 +9,7 @@
 
 #include "mesh/geometry.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/polygon_mesher.h"
 #include "tests/support.h"
 
 namespace rad {
@@ -214,6 +215,24 @@ TEST_F(CornellTest, EdgesAnglesAndPatchesRespectTheSettings) {
 }
 
 /// The area of every planar polygon is kept to round-off.
+/// Contact lines that cross each other inside a face (interpenetrating parts of a downloaded
+/// model): a scene polygon is refused, naming it; a mesh file's face is meshed without them.
+TEST(MeshingTest, CrossingLinesRefuseAPolygonButNotAMeshFace) {
+  Polygon2 p;
+  p.rings = {{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
+  p.ids = {{0, 1, 2, 3}};
+  p.lines = {{{2, 2}, {8, 8}}, {{2, 8}, {8, 2}}};
+  p.lineIds = {{-1, -1}, {-1, -1}};
+  test::expectError([&] { meshPolygon(p, 3, "crossing", false); }, {"crossing", "edges that cross each other"});
+  const Triangulation2 t = meshPolygon(p, 3, "crossing", true);
+  double area = 0;
+  for (const auto& tri : t.triangles) {
+    const glm::dvec2 a = t.points[size_t(tri[0])], b = t.points[size_t(tri[1])], c = t.points[size_t(tri[2])];
+    area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  EXPECT_NEAR(area, 100, 1e-9);
+}
+
 TEST(MeshingTest, AreaIsPreserved) {
   for (const char* name : {"cornell.json", "cornell_empty.json", "furnace.json", "cube.json",
                            "parallel_squares.json"}) {
