@@ -7,6 +7,7 @@
 
 #include <stb_image.h>
 
+#include "mesh/color.h"
 #include "mesh/error.h"
 
 namespace rad {
@@ -15,10 +16,7 @@ namespace {
 /// The linear value of an 8-bit sRGB code (IEC 61966-2-1), for every code.
 std::array<double, 256> srgbDecodeTable() {
   std::array<double, 256> table{};
-  for (int code = 0; code < 256; ++code) {
-    const double x = code / 255.0;
-    table[size_t(code)] = x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
-  }
+  for (int code = 0; code < 256; ++code) table[size_t(code)] = srgbDecode(code / 255.0);
   return table;
 }
 

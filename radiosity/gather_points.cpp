@@ -12,10 +12,8 @@ using Field = std::vector<glm::dvec3>;
 /// For each vertex of the base mesh, the refined mesh's vertex at the same place (-1: none).
 using BaseCorners = std::vector<int>;
 
-glm::dvec3 position(const PatchMesh& m, TriMesh::VertexHandle v) {
-  const auto& p = m.mesh.point(v);
-  return {p[0], p[1], p[2]};
-}
+/// Vertex v's place.
+glm::dvec3 position(const PatchMesh& m, TriMesh::VertexHandle v) { return PatchMesh::toGlm(m.mesh.point(v)); }
 
 /// The corners of base element j, as base vertex handles.
 std::array<TriMesh::VertexHandle, 3> corners(const PatchMesh& base, int j) {
