@@ -38,6 +38,21 @@ inline glm::vec4 faceClip(int f, const std::array<float, 3>& p, float near) {
   }
 }
 
+/// The frustum planes of the five faces that local point (a, b, c) lies strictly outside of:
+/// bits 5f..5f+4 for face f. A triangle whose corners share a bit of face f shows nothing on
+/// it (its projection lies beyond that edge of the face, or behind the eye), so the face need
+/// not draw it. Face f's planes are those of faceClip(f): |x| ≤ w, |y| ≤ w, w > 0.
+inline uint32_t outsidePlanes(const std::array<float, 3>& p) {
+  const float a = p[0], b = p[1], c = p[2];
+  auto face = [](float x, float w, float c) {  // a side face: |x| ≤ w, 0 ≤ c ≤ w
+    return uint32_t(x > w) | uint32_t(-x > w) << 1 | uint32_t(c > w) << 2 | uint32_t(c < 0) << 3 |
+           uint32_t(w <= 0) << 4;
+  };
+  const uint32_t top = uint32_t(a > c) | uint32_t(-a > c) << 1 | uint32_t(b > c) << 2 |
+                       uint32_t(-b > c) << 3 | uint32_t(c <= 0) << 4;
+  return top | face(b, a, c) << 5 | face(b, -a, c) << 10 | face(a, b, c) << 15 | face(a, -b, c) << 20;
+}
+
 /// The top face's R×R pixels: each pixel's factor is the exact factor of its square, seen
 /// from the origin (normal +z).
 std::vector<double> topPixelFactors(int R) {
@@ -196,6 +211,10 @@ Hemicube::Hemicube(const HemicubeGeometry& geometry, int resolution, double scen
     faces_[f] = std::make_unique<raster::Target>(resolution, resolution / 2, true, false);
   ids_.resize(geometry.elementCount());
   local_.resize(geometry.positions.size());
+  outside_.resize(geometry.positions.size());
+  needed_.assign(geometry.positions.size(), 0);
+  faces_of_.resize(geometry.elementCount());
+  slot_.resize(5 * geometry.positions.size());
   accumulator_.assign(geometry.elementCount() + 2, 0.0);
   seen_.assign((geometry.elementCount() + 2 + 63) / 64, 0);
 }
@@ -230,34 +249,62 @@ void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation
   for (size_t i = 0; i < P.size(); ++i) {
     glm::dvec3 d = P[i] - eye;
     local_[i] = {float(glm::dot(d, u)), float(glm::dot(d, v)), float(glm::dot(d, n))};
+    outside_[i] = outsidePlanes(local_[i]);
   }
-  keepAboveBase();
+  sortToFaces();
 }
 
-void Hemicube::keepAboveBase() {
-  // Only triangles reaching above the base plane can show on any face: often half the scene
-  // is behind the point, and no face needs to look at it.
+void Hemicube::sortToFaces() {
+  // Only triangles reaching above the base plane can show on any face (often half the scene
+  // is behind the point), and most of those on one face only. Each face gets its own
+  // triangles, in element order, and the clip-space vertices they use: first the faces of
+  // each triangle (and so of its corners), then each face's vertices, then its indices.
   const auto& I = geometry_.indices;
-  drawIndices_.resize(I.size());
-  drawIds_.resize(ids_.size());
-  size_t kept = 0;
-  for (size_t e = 0; e < ids_.size(); ++e) {
-    uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
-    if (local_[a][2] > 0 || local_[b][2] > 0 || local_[c][2] > 0) {
-      drawIndices_[3 * kept] = a;
-      drawIndices_[3 * kept + 1] = b;
-      drawIndices_[3 * kept + 2] = c;
-      drawIds_[kept++] = ids_[e];
-    }
+  const size_t elements = ids_.size(), vertices = local_.size();
+  std::array<size_t, 5> triangles{};
+  for (size_t e = 0; e < elements; ++e) {
+    const uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
+    const uint32_t shared = outside_[a] & outside_[b] & outside_[c];
+    // Bit 4 of the top face: no corner above the base plane.
+    uint32_t faces = 0;
+    if (!(shared & 16u))
+      for (int f = 0; f < 5; ++f) {
+        const uint32_t shows = ((shared >> (5 * f)) & 31u) == 0;
+        faces |= shows << f;
+        triangles[size_t(f)] += shows;
+      }
+    faces_of_[e] = uint8_t(faces);
+    needed_[a] |= uint8_t(faces), needed_[b] |= uint8_t(faces), needed_[c] |= uint8_t(faces);
   }
-  drawIndices_.resize(3 * kept);
-  drawIds_.resize(kept);
-}
-
-void Hemicube::faceClip(int face, std::vector<glm::vec4>& clip) const {
   const float near = float(near_);
-  clip.resize(local_.size());
-  for (size_t i = 0; i < local_.size(); ++i) clip[i] = rad::faceClip(face, local_[i], near);
+  for (auto& draw : draws_) draw.clip.clear();
+  for (size_t v = 0; v < vertices; ++v) {
+    if (!needed_[v]) continue;
+    for (uint32_t faces = needed_[v]; faces; faces &= faces - 1) {
+      const int f = __builtin_ctz(faces);
+      FaceDraw& draw = draws_[size_t(f)];
+      slot_[size_t(f) * vertices + v] = uint32_t(draw.clip.size());
+      draw.clip.push_back(rad::faceClip(f, local_[v], near));
+    }
+    needed_[v] = 0;
+  }
+  std::array<uint32_t*, 5> index;
+  std::array<uint32_t*, 5> id;
+  for (size_t f = 0; f < 5; ++f) {
+    draws_[f].indices.resize(3 * triangles[f]);
+    draws_[f].ids.resize(triangles[f]);
+    index[f] = draws_[f].indices.data();
+    id[f] = draws_[f].ids.data();
+  }
+  for (size_t e = 0; e < elements; ++e)
+    for (uint32_t faces = faces_of_[e]; faces; faces &= faces - 1) {
+      const size_t f = size_t(__builtin_ctz(faces));
+      const uint32_t* slot = slot_.data() + f * vertices;
+      *index[f]++ = slot[I[3 * e]];
+      *index[f]++ = slot[I[3 * e + 1]];
+      *index[f]++ = slot[I[3 * e + 2]];
+      *id[f]++ = ids_[e];
+    }
 }
 
 void Hemicube::renderFaces() {
@@ -265,12 +312,13 @@ void Hemicube::renderFaces() {
   state.depthFunc = raster::DepthFunc::Greater;
   state.clipDepth = raster::ClipDepth::ZeroToOne;
   for (int f = 0; f < 5; ++f) {
-    faceClip(f, clip_);
+    const FaceDraw& draw = draws_[size_t(f)];
     raster::Target& target = *faces_[f];
     target.clearDepth(0.0f);
     target.clearItem();
-    raster::drawTriangles(target, state, clip_.data(), clip_.size(), drawIndices_.data(),
-                          drawIds_.size(), drawIds_.data());
+    if (draw.ids.empty()) continue;
+    raster::drawTriangles(target, state, draw.clip.data(), draw.clip.size(), draw.indices.data(),
+                          draw.ids.size(), draw.ids.data());
   }
 }
 

@@ -70,26 +70,30 @@ class Hemicube {
 
   int resolution() const { return resolution_; }
 
+  /// What one face draws: the clip-space vertices of the triangles that may show on it (z =
+  /// near, reversed [0, 1] depth, GREATER), 3 indices into them per triangle, and each
+  /// triangle's item id (the element, or an occluder id). Face 0 is the top (R×R), 1–4 the
+  /// sides (R×R/2, upper half only).
+  struct FaceDraw {
+    std::vector<glm::vec4> clip;
+    std::vector<uint32_t> indices, ids;
+  };
+
   /// The steps of compute(), for drawing the identical item buffers with another rasteriser
-  /// (benchmarks): prepare() places the cube and sets the item ids; faceClip() gives face f's
-  /// clip-space vertices (0 top R×R; 1–4 sides R×R/2, upper half only; z = near, reversed
-  /// [0, 1] depth, GREATER).
+  /// (benchmarks): prepare() places the cube, sets the item ids and sorts the triangles to
+  /// the faces they may show on; faceDraw(f) is face f's share.
   void prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
                const std::vector<int>& excluded = {});
-  void faceClip(int face, std::vector<glm::vec4>& clip) const;
-  /// The triangles prepare() found above the base plane (the others show on no face):
-  /// 3 vertex indices each, and their item ids (the element, or an occluder id).
-  const std::vector<uint32_t>& drawIndices() const { return drawIndices_; }
-  const std::vector<uint32_t>& drawIds() const { return drawIds_; }
+  const FaceDraw& faceDraw(int face) const { return draws_[size_t(face)]; }
 
   /// Near plane and eye offset, as fractions of the scene size.
   static constexpr double kNearPlane = 1e-7;
   static constexpr double kEyeOffset = 1e-6;
 
  private:
-  /// The triangles reaching above the base plane, the only ones any face can show:
-  /// drawIndices_ and drawIds_ from ids_ and local_.
-  void keepAboveBase();
+  /// Each face's FaceDraw from ids_ and local_: the triangles reaching above the base plane
+  /// and not wholly outside one of the face's frustum planes, in element order.
+  void sortToFaces();
   /// Draws the five faces' item buffers.
   void renderFaces();
   /// Sums each face's delta form factors per item into `out` (elements ascending).
@@ -101,9 +105,12 @@ class Hemicube {
   const DeltaFormFactors& delta_;
   std::array<std::unique_ptr<raster::Target>, 5> faces_;  // top, +u, -u, +v, -v
   std::vector<uint32_t> ids_;
-  std::vector<uint32_t> drawIndices_, drawIds_;  // the triangles above the base plane
-  std::vector<std::array<float, 3>> local_;
-  std::vector<glm::vec4> clip_;
+  std::vector<std::array<float, 3>> local_;  // per vertex, along (u, v, n) from the eye
+  std::vector<uint32_t> outside_;            // per vertex, the frustum planes it is outside of
+  std::vector<uint8_t> faces_of_;            // per element, the faces it may show on (bits)
+  std::vector<uint8_t> needed_;              // per vertex, the faces that draw it (bits)
+  std::vector<uint32_t> slot_;               // per face and vertex: its index in the face's clip
+  std::array<FaceDraw, 5> draws_;
   std::vector<double> accumulator_;  // per element, then sky and back faces
   std::vector<uint64_t> seen_;       // bit set of the accumulator slots written
 };

@@ -95,7 +95,6 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
   static std::unique_ptr<bench::OsMesaItemBuffer> gl;
   if (!gl) gl = std::make_unique<bench::OsMesaItemBuffer>(1024, 1024);
   state.SetLabel(gl->renderer());
-  std::vector<glm::vec4> clip;
   std::vector<uint32_t> items;
   Points points(c.mesh);
   Stopwatch watch(state);
@@ -103,9 +102,9 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
     int e = points.next();
     hemicube.prepare(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), {e});
     for (int f = 0; f < 5; ++f) {
-      hemicube.faceClip(f, clip);
-      gl->draw(R, f == 0 ? R : R / 2, clip.data(), clip.size(), hemicube.drawIndices().data(),
-               hemicube.drawIds().size(), hemicube.drawIds().data(), items);
+      const rad::Hemicube::FaceDraw& draw = hemicube.faceDraw(f);
+      gl->draw(R, f == 0 ? R : R / 2, draw.clip.data(), draw.clip.size(), draw.indices.data(),
+               draw.ids.size(), draw.ids.data(), items);
       benchmark::DoNotOptimize(items.data());
     }
   }
@@ -115,11 +114,11 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
 
 // Arguments: resolution R, then 10 or 100 (thousand triangles).
 BENCHMARK(BM_HemicubeCore)
-    ->ArgsProduct({{128, 256, 512}, {10, 100}})
+    ->ArgsProduct({{32, 64, 128, 256, 512}, {10, 100}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_HemicubeOsMesa)
-    ->ArgsProduct({{128, 256, 512}, {10, 100}})
+    ->ArgsProduct({{32, 64, 128, 256, 512}, {10, 100}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
