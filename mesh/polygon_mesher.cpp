@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <set>
@@ -22,6 +23,12 @@
 
 namespace rad {
 namespace {
+
+/// A mesh file's triangle at least this many element edges long, with no angle below
+/// kLargeFaceMinAngleDeg, is meshed as a scene polygon (isLargeWellShaped).
+constexpr double kLargeFaceEdges = 3;
+constexpr double kLargeFaceMinAngleDeg = 30;
+constexpr double kLargeFaceMinSegment = 0.125;
 
 struct PointId {
   int id = -1;
@@ -278,6 +285,29 @@ Triangulation2 meshTriangleFace(const Polygon2& polygon, double maxEdge, const s
   return extract(cdt);
 }
 
+/// The shortest segment of a ring (closed).
+double shortestSegment(const std::vector<glm::dvec2>& ring) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < ring.size(); ++k) shortest = std::min(shortest, glm::length(ring[(k + 1) % ring.size()] - ring[k]));
+  return shortest;
+}
+
+/// Whether a mesh file's triangle is a wall or floor drawn as triangles, to be meshed as a
+/// scene polygon would be, so that the same room meshes alike from any format: large (three
+/// element edges or more across), well shaped (no angle below kLargeFaceMinAngleDeg), and
+/// with no boundary point its neighbours put close to another (shortest segment at least
+/// kLargeFaceMinSegment element edges; below, refinement for shape would grade down to it,
+/// as along the rim of a water surface of 10 000 faces).
+bool isLargeWellShaped(const Polygon2& polygon, double maxEdge) {
+  const std::vector<glm::dvec2> t = turningPoints(polygon.rings[0]);
+  double longest = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (angleAt(t[size_t(i)], t[size_t(i + 1) % 3], t[size_t(i + 2) % 3]) < kLargeFaceMinAngleDeg * M_PI / 180) return false;
+    longest = std::max(longest, glm::length(t[size_t(i + 1) % 3] - t[size_t(i)]));
+  }
+  return longest >= kLargeFaceEdges * maxEdge && shortestSegment(polygon.rings[0]) >= kLargeFaceMinSegment * maxEdge;
+}
+
 }  // namespace
 
 Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
@@ -289,7 +319,8 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
                            bool meshFace) {
   if (isGoodTriangle(polygon, maxEdge, meshFace)) return loneTriangle(polygon);
-  if (meshFace && isTriangleFace(polygon)) return meshTriangleFace(polygon, maxEdge, where);
+  if (meshFace && isTriangleFace(polygon) && !isLargeWellShaped(polygon, maxEdge))
+    return meshTriangleFace(polygon, maxEdge, where);
   CDT cdt;
   std::vector<K::Point_2> seeds = markInside(cdt, insertFaceRings(cdt, polygon, where, meshFace));
   // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.

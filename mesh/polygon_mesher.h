@@ -39,7 +39,9 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 /// Delaunay refinement: every triangle has edges no longer than maxEdge and angles of at
 /// least kMeshMinAngleDeg wherever the input's angles allow. Boundary segments may be split;
 /// the added points are flagged onBoundary. A lone triangle of a mesh file (meshFace) within
-/// maxEdge is kept as it is, whatever its angles.
+/// maxEdge is kept as it is, whatever its angles; a larger one is split by its congruent
+/// lattice, unless it is large and well shaped (a wall drawn as two triangles), which is
+/// meshed like a polygon.
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
                            bool meshFace = false);
 

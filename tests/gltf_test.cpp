@@ -28,10 +28,10 @@ constexpr double kCornerTolerance = 1e-3;
 /// Colours computed two ways in double precision: this close (relative).
 constexpr double kColourTolerance = 1e-12;
 /// The glTF Cornell box shows the JSON one's light within this RMS (relative, issue 15's
-/// target), at every reference point but the one where the two differ most ...
+/// target) at the reference points.
 constexpr double kSameLight = 0.01;
-/// ... and within this with it (see SolvesToTheLightOfTheJsonScene).
-constexpr double kSameLightAll = 0.02;
+/// ... and its true error (against the path-traced reference) is the JSON one's within this.
+constexpr double kSameTrueError = 0.0025;
 /// Channels of the JSON solve below this share of its brightest shown value are not compared
 /// (as the true error skips near-black ones).
 constexpr double kDarkShare = 0.01;
@@ -444,12 +444,10 @@ double rmsOf(const std::vector<std::pair<double, int>>& squares, int except = -1
 }
 
 // Issue 15's target: solved at defaults, the glTF export shows the JSON scene's light at the
-// reference points (what a viewer shows there, Gouraud-interpolated). Measured: 1.57 % RMS over
-// 831 channels, 0.69 % without the one point where they differ most: the floor 9 mm from the
-// tall block's corner (431.9, 0, 246.9), where the shown value moves between 0.099 and 0.125
-// (reference 0.102) with any change of the mesh (the left wall's two triangles meshed as a mesh
-// file's, the JSON's own coordinates rounded to float: 0.099 -> 0.106). Against the path-traced
-// reference the true errors are 1.56 % (JSON) and 1.90 % (glTF).
+// reference points (what a viewer shows there, Gouraud-interpolated). Measured: 0.70 % RMS over
+// 831 channels (1.57 % while the bent left wall's two triangles were split by their lattice
+// instead of meshed as the JSON's polygon is); against the path-traced reference the true
+// errors are 1.56 % (JSON) and 1.57 % (glTF).
 TEST(GltfCornellTest, SolvesToTheLightOfTheJsonScene) {
   const auto json = test::solveLikeCli(test::kScenes + "cornell.json");
   const auto gltf = test::solveLikeCli(test::kData + "cornell_gltf.json");
@@ -462,9 +460,8 @@ TEST(GltfCornellTest, SolvesToTheLightOfTheJsonScene) {
   const int worst = int(std::max_element(squares.begin(), squares.end()) - squares.begin());
   const double all = rmsOf(squares), allButWorst = rmsOf(squares, worst);
   const double errorJson = atJson.measure(json->shown).rms, errorGltf = atGltf.measure(gltf->shown).rms;
-  EXPECT_LE(allButWorst, kSameLight) << "worst point " << worst + 1 << " (" << points[size_t(worst)].surface << ")";
-  EXPECT_LE(all, kSameLightAll);
-  EXPECT_LE(errorGltf, errorJson + kSameLight) << "true errors against the reference";
+  EXPECT_LE(all, kSameLight) << "worst point " << worst + 1 << " (" << points[size_t(worst)].surface << ")";
+  EXPECT_LE(errorGltf, errorJson + kSameTrueError) << "true errors against the reference";
   std::cout << "glTF vs JSON Cornell box: " << 100 * all << " % RMS (" << 100 * allButWorst << " % without point "
             << worst + 1 << " on " << points[size_t(worst)].surface << "); true error JSON " << 100 * errorJson
             << " %, glTF " << 100 * errorGltf << " %\n";
