@@ -109,6 +109,9 @@ struct Scene {
   std::optional<Fog> fog;
   SolverBlock solver;
   std::vector<std::string> warnings;  ///< repairs the loader made ("dropped 3 degenerate faces")
+  /// What the loader did that changes no light (a face repeated exactly, material and all,
+  /// kept once): `radiosity info` lists them, `solve` does not warn.
+  std::vector<std::string> notes;
 
   bool hasEmitter() const;
   /// The diagonal of the axis-aligned bounding box of every surface.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -186,24 +187,44 @@ std::vector<double> faceKey(const Polygon& face) {
 }
 
 /// Drops the faces that repeat an earlier face of the file (same corners, same facing: two
-/// coincident copies would fight in every hemicube and double the area), and says so once.
-void dropRepeatedFaces(std::vector<MeshFileGroup>& groups, const Node& s, std::vector<std::string>& warnings) {
-  std::set<std::vector<double>> seen;
-  size_t dropped = 0;
-  std::string where;
+/// coincident copies would fight in every hemicube and double the area). A copy in the same
+/// material changes nothing and is noted; one in another material, whose colour is lost, is
+/// warned about.
+void dropRepeatedFaces(std::vector<MeshFileGroup>& groups, const Node& s, Scene& scene) {
+  std::map<std::vector<double>, std::string> seen;  // face -> its material
+  size_t same = 0, other = 0;
+  std::set<std::string> sameIn, otherIn;
+  std::vector<bool> emptied;
   for (auto& group : groups) {
+    const std::string material = group.material.empty() ? std::string("no material") : group.material;
+    auto repeated = [&](const Polygon& f) {
+      if (isDegenerate(f)) return false;
+      const auto [at, added] = seen.emplace(faceKey(f), material);
+      if (added) return false;
+      (at->second == material ? sameIn : otherIn).insert(material);
+      ++(at->second == material ? same : other);
+      return true;
+    };
     const size_t before = group.faces.size();
-    group.faces.erase(std::remove_if(group.faces.begin(), group.faces.end(),
-                                     [&](const Polygon& f) { return !isDegenerate(f) && !seen.insert(faceKey(f)).second; }),
-                      group.faces.end());
-    if (group.faces.size() == before) continue;
-    dropped += before - group.faces.size();
-    where += (where.empty() ? "" : ", ") + (group.material.empty() ? std::string("no material") : group.material);
+    group.faces.erase(std::remove_if(group.faces.begin(), group.faces.end(), repeated), group.faces.end());
+    emptied.push_back(before > 0 && group.faces.empty());
   }
-  if (dropped)
-    warnings.push_back(s.where() + " (" + s["mesh"].string() + "): dropped " + std::to_string(dropped) +
-                       " face(s) repeating an earlier face with the same corners and facing (in " + where +
-                       "); remove the copies from the file to silence this");
+  // A group all of whose faces repeat earlier ones goes with them.
+  for (size_t g = groups.size(); g-- > 0;)
+    if (emptied[g]) groups.erase(groups.begin() + long(g));
+  auto listed = [](const std::set<std::string>& names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+  };
+  const std::string file = s.where() + " (" + s["mesh"].string() + "): ";
+  if (same)
+    scene.notes.push_back(file + "dropped " + std::to_string(same) + " exact repeat(s) of a face (in " +
+                          listed(sameIn) + ")");
+  if (other)
+    scene.warnings.push_back(file + "dropped " + std::to_string(other) +
+                             " face(s) repeating an earlier face of another material with the same corners and facing (in " +
+                             listed(otherIn) + "; the first one's material is kept); remove the copies from the file to silence this");
 }
 
 /// A mesh file surface (node s), one surface per material group unless the surface names
@@ -217,7 +238,7 @@ void readMeshSurface(const Node& s, const Surface& surface, const std::string& b
   std::vector<std::string> notes;
   auto groups = readMeshFile(full.string(), s["mesh"].where(), notes);
   for (const std::string& note : notes) scene.warnings.push_back(s.where() + " (" + file + "): " + note);
-  dropRepeatedFaces(groups, s, scene.warnings);
+  dropRepeatedFaces(groups, s, scene);
   int fixedMaterial = s.has("material") ? materialIndex(s["material"], scene) : -1;
   if (fixedMaterial >= 0) groups = merged(std::move(groups));
   for (auto& group : groups) addGroupSurface(s, surface, group, fixedMaterial, transform, scene);

@@ -44,13 +44,24 @@ TEST(MeshFileTest, OneLineSceneNeedsNoMaterials) {
   EXPECT_EQ(s.surfaces[0].name.rfind("two_materials/", 0), 0u) << s.surfaces[0].name;  // named after the file
 }
 
-TEST(MeshFileTest, RepeatedFacesAreDroppedAndSaidOnce) {
+TEST(MeshFileTest, ExactRepeatsAreDroppedAndNotedNotWarned) {
   const Scene s = parseInData(R"({"version": 1, "materials": {"m": {"reflectance": [0.5, 0.5, 0.5]}},
                                   "surfaces": [{"mesh": "repeated_face.obj", "material": "m"}]})");
   ASSERT_EQ(s.surfaces.size(), 1u);
   EXPECT_EQ(s.surfaces[0].polygons.size(), 3u);  // the square, the triangle, the reversed triangle
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes[0].find("dropped 2 exact repeat(s) of a face"), std::string::npos) << s.notes[0];
+}
+
+/// A face repeated in another material loses that material's colour: a warning names both.
+TEST(MeshFileTest, RepeatInAnotherMaterialIsWarned) {
+  const Scene s = parseInData(R"({"version": 1, "surfaces": [{"mesh": "repeated_face_materials.obj"}]})");
+  ASSERT_EQ(s.surfaces.size(), 1u);  // b has no face left
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_NE(s.warnings[0].find("dropped 2 face(s) repeating an earlier face"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("another material"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("in b"), std::string::npos) << s.warnings[0];
+  EXPECT_TRUE(s.notes.empty());
 }
 
 /// A mesh file all of whose faces have no area (a downloaded scene's sliver object) is left out
@@ -85,14 +96,15 @@ TEST(MeshFileTest, MtlApproximationsAreTakenAndSaid) {
   EXPECT_NE(all.find("texture not read, Kd used"), std::string::npos) << all;
 }
 
-/// McGuire's box as a user gets it from its one-line scene: the two warnings a user can act on
-/// (the bent left wall; the blocks' "bottom" faces, which repeat a side in the file) and nothing
-/// else on the terminal (no library's message); no vertex shared round a block's edge; every
-/// element where it belongs (no face on a non-manifold edge).
+/// McGuire's box as a user gets it from its one-line scene: the one warning a user can act on
+/// (the bent left wall) and nothing else on the terminal (no library's message; the blocks'
+/// "bottom" faces, which repeat a side exactly in the file, only noted); no vertex shared round
+/// a block's edge; every element where it belongs (no face on a non-manifold edge).
 TEST(MeshFileTest, CornellBoxOriginalMeshesCleanly) {
   Scene scene = loadSceneToSolve(test::kScenes + "cornell_original.json");
-  ASSERT_EQ(scene.warnings.size(), 1u);
-  EXPECT_NE(scene.warnings[0].find("dropped 2 face(s)"), std::string::npos) << scene.warnings[0];
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings[0];
+  ASSERT_EQ(scene.notes.size(), 1u);
+  EXPECT_NE(scene.notes[0].find("dropped 2 exact repeat(s)"), std::string::npos) << scene.notes[0];
   std::vector<std::string> warnings;
   const Settings settings = resolveSettings(scene, {});
   testing::internal::CaptureStderr();
