@@ -100,18 +100,28 @@ struct DirectLight::Rays {
     return ray;
   }
 
-  /// Whether each segment from a to a point of `to` is blocked, as one stream of rays from one
-  /// origin (Embree traces them together, coherent).
+  /// Whether each segment from a to a point of `to` is blocked, in packets of 16 rays from
+  /// one origin (coherent: Embree traverses each packet together).
   void blocked(const glm::dvec3& a, const std::vector<glm::dvec3>& to, std::vector<char>& out) const {
-    std::vector<RTCRay> rays;
-    rays.reserve(to.size());
-    for (const glm::dvec3& b : to) rays.push_back(segment(a, b));
+    out.assign(to.size(), 0);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    if (!rays.empty()) rtcOccluded1M(scene, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
-    out.resize(to.size());
-    for (size_t k = 0; k < rays.size(); ++k) out[k] = rays[k].tfar < 0;
+    for (size_t first = 0; first < to.size(); first += 16) {
+      const size_t count = std::min<size_t>(16, to.size() - first);
+      alignas(64) RTCRay16 packet;
+      alignas(64) int valid[16];
+      for (size_t k = 0; k < 16; ++k) {
+        const RTCRay ray = segment(a, to[first + std::min(k, count - 1)]);
+        valid[k] = k < count ? -1 : 0;
+        packet.org_x[k] = ray.org_x, packet.org_y[k] = ray.org_y, packet.org_z[k] = ray.org_z;
+        packet.dir_x[k] = ray.dir_x, packet.dir_y[k] = ray.dir_y, packet.dir_z[k] = ray.dir_z;
+        packet.tnear[k] = ray.tnear, packet.tfar[k] = ray.tfar, packet.mask[k] = ray.mask;
+        packet.time[k] = 0.0f, packet.id[k] = 0, packet.flags[k] = 0;
+      }
+      rtcOccluded16(valid, scene, &context, &packet);
+      for (size_t k = 0; k < count; ++k) out[first + k] = packet.tfar[k] < 0;
+    }
   }
 };
 
