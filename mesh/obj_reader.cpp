@@ -228,15 +228,21 @@ int faceMaterial(const tinyobj::shape_t& shape, size_t f, int materials) {
   return mat >= materials ? -1 : mat;
 }
 
-/// Adds the shape's faces to the groups of their materials (-1: none, or an unknown one).
-void addShapeFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, int materials,
-                   const std::string& path, std::map<int, MeshFileGroup>& groups) {
+/// A group's key: its material id (-1: none, or an unknown one), then its object's place among
+/// the file's objects (`o`/`g` names) in order of first appearance.
+using GroupKey = std::pair<int, int>;
+
+/// Adds the shape's faces to the groups of their object and material.
+void addShapeFaces(const tinyobj::shape_t& shape, const tinyobj::attrib_t& attrib, int materials, int object,
+                   const std::string& path, std::map<GroupKey, MeshFileGroup>& groups) {
   checkCorners(shape, path);
   size_t offset = 0;
   for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
     Polygon polygon = objFace(shape, attrib, f, offset, path);
     offset += shape.mesh.num_face_vertices[f];
-    groups[faceMaterial(shape, f, materials)].faces.push_back(std::move(polygon));
+    MeshFileGroup& group = groups[{faceMaterial(shape, f, materials), object}];
+    group.object = shape.name;
+    group.faces.push_back(std::move(polygon));
   }
 }
 
@@ -245,7 +251,7 @@ constexpr uint64_t kMaxTextureBytes = uint64_t(256) << 20;
 
 /// What reading the materials approximated, said once per file.
 struct Approximations {
-  std::vector<std::string> textured, unreadTextures, diffuseOnly;
+  std::vector<std::string> textured, unreadTextures, diffuseOnly;  // in the MTL's order
   size_t diffuseOnlyFaces = 0;
 };
 
@@ -281,17 +287,29 @@ std::string beyondDiffuse(const tinyobj::material_t& m, const glm::dvec3& kd) {
   return why;
 }
 
-/// The group takes the MTL material's name and colours (Kd, or its texture's mean; Ke: finite),
-/// and notes what was approximated.
-void nameGroup(const tinyobj::material_t& m, const std::string& path, MeshFileGroup& group, Approximations& said) {
+/// An MTL material's colours as groups take them: Kd (or its texture's mean) and Ke.
+struct MaterialColours {
+  glm::dvec3 kd{0.0}, ke{0.0};
+};
+
+/// Material m's colours, noting in `said` what was approximated (once per material).
+MaterialColours materialColours(const tinyobj::material_t& m, const std::string& path, Approximations& said) {
+  MaterialColours c;
+  c.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
+  c.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
+  if (!m.diffuse_texname.empty()) c.kd = texturedDiffuse(m, c.kd, path, said);
+  const std::string why = beyondDiffuse(m, c.kd);
+  if (!why.empty()) said.diffuseOnly.push_back(m.name + " (" + why + ")");
+  return c;
+}
+
+/// The group takes MTL material m's name and colours; its faces count as approximated when
+/// the material is.
+void nameGroup(const tinyobj::material_t& m, const MaterialColours& c, MeshFileGroup& group, Approximations& said) {
   group.material = m.name;
-  group.kd = finiteColour(m.diffuse, path + ": material " + m.name + ": Kd");
-  group.ke = finiteColour(m.emission, path + ": material " + m.name + ": Ke");
-  if (!m.diffuse_texname.empty()) group.kd = texturedDiffuse(m, *group.kd, path, said);
-  const std::string why = beyondDiffuse(m, *group.kd);
-  if (why.empty()) return;
-  said.diffuseOnly.push_back(m.name + " (" + why + ")");
-  said.diffuseOnlyFaces += group.faces.size();
+  group.kd = c.kd;
+  group.ke = c.ke;
+  if (!beyondDiffuse(m, c.kd).empty()) said.diffuseOnlyFaces += group.faces.size();
 }
 
 /// The names, comma-separated.
@@ -312,26 +330,34 @@ void addNotes(const Approximations& said, std::vector<std::string>& notes) {
     notes.push_back("material(s) " + listed(said.unreadTextures) + ": texture not read, Kd used");
 }
 
-/// The groups in material order, each named with its MTL material's name and colours; what
-/// that approximated goes into `notes`.
-std::vector<MeshFileGroup> namedGroups(std::map<int, MeshFileGroup>& groups,
+/// The groups in material order (objects in file order within one), each named with its MTL
+/// material's name and colours; what that approximated goes into `notes`.
+std::vector<MeshFileGroup> namedGroups(std::map<GroupKey, MeshFileGroup>& groups,
                                        const std::vector<tinyobj::material_t>& materials,
                                        const std::string& path, std::vector<std::string>& notes) {
   std::vector<MeshFileGroup> out;
   Approximations said;
-  for (auto& [id, group] : groups) {
-    if (id >= 0) nameGroup(materials[size_t(id)], path, group, said);
+  std::map<int, MaterialColours> colours;  // once per material, however many objects use it
+  for (auto& [key, group] : groups) {
+    const int id = key.first;
+    if (id >= 0) {
+      if (!colours.count(id)) colours[id] = materialColours(materials[size_t(id)], path, said);
+      nameGroup(materials[size_t(id)], colours[id], group, said);
+    }
     out.push_back(std::move(group));
   }
   addNotes(said, notes);
   return out;
 }
 
-/// Every shape's faces, grouped by material id (-1: none).
-std::map<int, MeshFileGroup> facesByMaterial(const tinyobj::ObjReader& reader, const std::string& path) {
-  std::map<int, MeshFileGroup> groups;
-  for (const auto& shape : reader.GetShapes())
-    addShapeFaces(shape, reader.GetAttrib(), int(reader.GetMaterials().size()), path, groups);
+/// Every shape's faces, grouped by material id (-1: none) and object.
+std::map<GroupKey, MeshFileGroup> facesByMaterial(const tinyobj::ObjReader& reader, const std::string& path) {
+  std::map<GroupKey, MeshFileGroup> groups;
+  std::map<std::string, int> objects;  // name -> order of first appearance
+  for (const auto& shape : reader.GetShapes()) {
+    const int object = objects.emplace(shape.name, int(objects.size())).first->second;
+    addShapeFaces(shape, reader.GetAttrib(), int(reader.GetMaterials().size()), object, path, groups);
+  }
   return groups;
 }
 
@@ -343,7 +369,7 @@ std::vector<MeshFileGroup> readObjFile(const std::string& path, std::vector<std:
   tinyobj::ObjReader reader;
   parseObj(obj, path, reader);
   checkFiniteVertices(reader.GetAttrib(), path);
-  std::map<int, MeshFileGroup> groups = facesByMaterial(reader, path);
+  std::map<GroupKey, MeshFileGroup> groups = facesByMaterial(reader, path);
   return namedGroups(groups, reader.GetMaterials(), path, notes);
 }
 

@@ -160,7 +160,9 @@ void addGroupSurface(const Node& s, Surface surface, MeshFileGroup& group, int f
   if (fixedMaterial >= 0) {
     surface.material = fixedMaterial;
   } else if (!group.material.empty()) {
-    surface.name += "/" + group.material;
+    // Named after its object too where that says more (archives name objects after materials).
+    const bool objectNamed = !group.object.empty() && group.object != group.material;
+    surface.name += "/" + (objectNamed ? group.object + "/" : std::string()) + group.material;
     surface.material = addMtlMaterial(s, group, scene);
   } else {
     s.failWith("a \"material\" key or MTL materials on every face of " + s["mesh"].string(),

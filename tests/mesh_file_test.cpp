@@ -24,6 +24,8 @@ constexpr int kWaterAgreementRounds = 8;
 /// ... and elements it may have before adaptive refinement (measured 16 443 from its ~10 000
 /// faces; meshing its walls' triangles for shape next to the water's rim gave 24 963).
 constexpr int kWaterMaxElements = 20000;
+/// An MTL colour as read (single precision in the file's reader).
+constexpr double kColourTolerance = 1e-6;
 
 /// Elements round a vertex bend by less than the crease angle: each face of a box keeps its own
 /// vertices, so no light smears round its edges.
@@ -62,6 +64,15 @@ TEST(MeshFileTest, RepeatInAnotherMaterialIsWarned) {
   EXPECT_NE(s.warnings[0].find("another material"), std::string::npos) << s.warnings[0];
   EXPECT_NE(s.warnings[0].find("in b"), std::string::npos) << s.warnings[0];
   EXPECT_TRUE(s.notes.empty());
+}
+
+/// Objects (`o`, `g`) of one material stay apart, each a surface named after its object.
+TEST(MeshFileTest, ObjectsOfOneMaterialAreSurfacesOfTheirOwn) {
+  const Scene s = parseInData(R"({"version": 1, "surfaces": [{"mesh": "two_objects.obj"}]})");
+  ASSERT_EQ(s.surfaces.size(), 2u);
+  EXPECT_EQ(s.surfaces[0].name, "two_objects/Table/white");
+  EXPECT_EQ(s.surfaces[1].name, "two_objects/Shelf/white");
+  EXPECT_NEAR(s.materials[size_t(s.surfaces[0].material)].reflectance.x, 0.7, kColourTolerance);
 }
 
 /// A mesh file all of whose faces have no area (a downloaded scene's sliver object) is left out
