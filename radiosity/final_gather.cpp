@@ -65,9 +65,14 @@ Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
   out.rows.resize(gathering.size());
   once.assign(gathering.size(), glm::dvec3(0.0));
   std::atomic<long> factors{0};
+  std::atomic<bool> late{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
   parallelFor(gathering.size(), workers, [&](size_t v, int worker) {
-    if (!gathering[v]) return;
+    if (!gathering[v] || late) return;
+    if (options.deadline && Clock::now() > *options.deadline) {
+      late = true;
+      return;
+    }
     FormFactors& f = scratch[size_t(worker)];
     factorsAt(mesh, sceneSize, options.seed, int(v), *cubes[size_t(worker)], f);
     Row& row = out.rows[v];
@@ -77,6 +82,7 @@ Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
     if ((factors += long(f.elements.size())) > budget) row = Row();
   }, 16);
   stats.factors = factors;
+  stats.timedOut = late;
   out.kept = factors <= budget;
   if (!out.kept) out.rows.clear();
   return out;
@@ -167,7 +173,8 @@ void solveSystem(const VertexSystem& A, const Field& b, Field& x, const GatherOp
   Field p(x.size(), glm::dvec3(0.0)), v(x.size(), glm::dvec3(0.0));
   glm::dvec3 rhoOld(1.0), alpha(1.0), omega(1.0);
   stats.residual = relativeResidual(r, bNorm2);
-  for (stats.iterations = 0; stats.iterations < options.maxIterations && stats.residual > options.tolerance;
+  auto inTime = [&] { return !options.deadline || Clock::now() <= *options.deadline; };
+  for (stats.iterations = 0; stats.iterations < options.maxIterations && stats.residual > options.tolerance && inTime();
        ++stats.iterations) {
     const glm::dvec3 rho = dot(rHat, r);
     const glm::dvec3 beta = safeDivide(rho, rhoOld) * safeDivide(alpha, omega);
@@ -260,6 +267,10 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   const Rows rows = gatherRows(mesh, drawn, sceneSize, points.at, sent(drawn, W.apply(start), !direct), once,
                                options, stats);
   stats.hemicubeSeconds = secondsSince(clock);
+  if (stats.timedOut) {
+    if (statsOut) *statsOut = stats;
+    return {};
+  }
   clock = Clock::now();
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {

@@ -1,5 +1,7 @@
 #include "radiosity/solve.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include <glm/common.hpp>
@@ -7,6 +9,7 @@
 #include "mesh/color.h"
 #include "mesh/default_camera.h"
 #include "mesh/error.h"
+#include "mesh/parallel.h"
 #include "radiosity/result.h"
 
 namespace rad {
@@ -86,6 +89,12 @@ void lightVertices(MeshedScene& s) {
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
+/// What timeLeft says once the time limit is spent (positive: 0 would mean no limit).
+constexpr double kNoTimeLeft = 1e-9;
+
+/// The gather may take at most this share of the time a time limit leaves after meshing.
+constexpr double kGatherShareOfTimeLeft = 0.5;
+
 /// The final gather if the settings ask for it and it fits the budget: each gathering vertex's
 /// hemicube (the mesh's before refinement: gather_points.h) draws every element of that mesh,
 /// so its work grows as vertices × elements. Skipped, the progressive solve is the answer and
@@ -96,16 +105,35 @@ void decideGather(MeshedScene& s) {
   const double drawn = drawnMesh.elementCount();
   const size_t gathering = drawnMesh.mesh.n_vertices();
   const double work = double(gathering) * drawn;
-  s.gather = work <= kMaxGatherWork;
+  const double seconds = work * kGatherSecondsPerPair / workerCount(0), left = timeLeft(s);
+  s.gather = work <= kMaxGatherWork && !(left > 0 && seconds > kGatherShareOfTimeLeft * left);
   if (s.gather) return;
   if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
   char text[320];
-  std::snprintf(text, sizeof text,
-                "final gather skipped: %zu vertices each drawing %.0f elements is more than the %.0e "
-                "vertex-element pairs it may cost (about ten seconds); the progressive solution is shown "
-                "at the vertices (coarser elements gather: raise solver.max_element_edge)",
-                gathering, drawn, kMaxGatherWork);
+  if (work > kMaxGatherWork)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped: %zu vertices each drawing %.0f elements is more than the %.0e "
+                  "vertex-element pairs it may cost (about ten seconds); the progressive solution is shown "
+                  "at the vertices (coarser elements gather: raise solver.max_element_edge)",
+                  gathering, drawn, kMaxGatherWork);
+  else if (left > kNoTimeLeft)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "
+                  "meshing; the progressive solution is shown at the vertices, shot until the time limit",
+                  seconds, left);
+  else
+    std::snprintf(text, sizeof text,
+                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
+                  "and the ambient term are shown",
+                  s.settings.timeLimit);
   s.mesh.warnings.push_back(text);
+}
+
+/// The solver options of the scene's settings, the time limit what meshing left of it.
+SolverOptions limitedOptions(const MeshedScene& s) {
+  SolverOptions options = solverOptions(s.settings, s.mesh.patches.size());
+  options.timeLimit = timeLeft(s);
+  return options;
 }
 
 /// Sets every negative channel to 0; the number of elements that had one.
@@ -142,6 +170,12 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
   return s;
 }
 
+double timeLeft(const MeshedScene& scene) {
+  if (!(scene.settings.timeLimit > 0)) return 0;
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - scene.started).count();
+  return std::max(kNoTimeLeft, scene.settings.timeLimit - spent);
+}
+
 SolverOptions solverOptions(const Settings& settings, size_t patches) {
   SolverOptions options;
   options.tolerance = settings.tolerance;
@@ -163,7 +197,7 @@ std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& s, int worke
 }
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)
-    : RadiositySolve(scene, solverOptions(scene.settings, scene.mesh.patches.size()), workers) {}
+    : RadiositySolve(scene, limitedOptions(scene), workers) {}
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, const SolverOptions& options, int workers)
     : scene_(scene), workers_(workers), factors_(hemicubeFactors(scene, workers)),
@@ -193,8 +227,13 @@ void RadiositySolve::gatherAtVertices(Solution& b) const {
   options.resolution = scene_.settings.gatherResolution;
   options.seed = scene_.settings.seed;
   options.workers = workers_;
+  if (scene_.settings.timeLimit > 0)
+    options.deadline = scene_.started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                            std::chrono::duration<double>(scene_.settings.timeLimit));
   const std::vector<glm::dvec3>* direct = b.direct ? &b.direct->vertex : nullptr;
-  b.gathered = finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather);
+  std::vector<glm::dvec3> gathered = finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather);
+  if (b.gather.timedOut) return;  // the progressive solution stays, with its ambient term
+  b.gathered = std::move(gathered);
   b.B = elementMeans(mesh, *b.gathered);
   b.ambient = glm::dvec3(0.0);
 }

@@ -9,6 +9,7 @@
 //   RadiositySolve solve(scene);
 //   while (solve.step()) { ... solve.solver().unshotFraction() ... }
 //   Solution solution = solve.bake();
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -42,8 +43,12 @@ struct MeshedScene {
   AdaptiveStats adaptive;            ///< what adaptive refinement did
   std::unique_ptr<PatchMesh> base;   ///< the mesh before refinement (null if nothing was refined)
   /// Whether the solution is gathered at the vertices: settings.finalGather, unless the
-  /// gather would cost more than kMaxGatherWork (said in a warning).
+  /// gather would cost more than kMaxGatherWork, or more than half the time limit left once
+  /// meshed (said in a warning).
   bool gather = false;
+  /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
+  /// what meshing left of it.
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
 struct MeshingOptions {
@@ -62,6 +67,9 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
 /// The solver options the settings give, for a mesh of `patches` patches (which
 /// Settings::shotsPerPatch counts).
 SolverOptions solverOptions(const Settings& settings, size_t patches);
+/// The seconds of settings.timeLimit the scene has left (0: no limit; else at least 1e-9,
+/// once spent).
+double timeLeft(const MeshedScene& scene);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& scene, int workers = 0);
 

@@ -3,6 +3,7 @@
 // path-traced references stays within the measured limits, the elements agree with their
 // vertices, and a scene too large for the gather is told so.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -167,6 +168,44 @@ TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
   EXPECT_EQ(meshed.settings.tolerance, kDefaultTolerance);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
                           [](const std::string& w) { return w.find("final gather skipped") != std::string::npos; }));
+}
+
+/// A time limit that meshing alone uses up: no gather and no shot, but a result to look at
+/// (the rays' direct light and the ambient term of all the light not shot), said in a warning.
+TEST(FinalGatherTest, TimeLimitSpentByMeshingStillGivesAViewableResult) {
+  SolverBlock flags;
+  flags.timeLimit = 1e-6;
+  Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
+  std::vector<std::string> warnings;
+  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, flags),
+                                       {true, [&](const std::string& w) { warnings.push_back(w); }});
+  EXPECT_FALSE(meshed.gather);
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
+                          [](const std::string& w) { return w.find("meshing took all") != std::string::npos; }));
+  RadiositySolve solve(meshed);
+  while (solve.step()) {
+  }
+  EXPECT_EQ(solve.solver().stopReason(), ProgressiveSolver::Stop::TimeLimit);
+  const Solution solution = solve.bake();
+  EXPECT_FALSE(solution.gathered);
+  EXPECT_FALSE(solution.converged);
+  EXPECT_GT(solution.ambient.x, 0.0);
+  const std::vector<glm::dvec3> shown = shownAtVertices(meshed, solution);
+  for (const glm::dvec3& x : shown)
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(x[c]) && x[c] >= 0) << x[c];
+}
+
+/// A gather whose deadline has passed gives up (empty, timed out) instead of running over.
+TEST(FinalGatherTest, GivesUpAtItsDeadline) {
+  const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
+  GatherOptions options;
+  options.deadline = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  GatherStats stats;
+  const std::vector<glm::dvec3> start(s->meshed.mesh.mesh.n_vertices(), glm::dvec3(0.0));
+  const auto gathered = finalGather(s->meshed.mesh, s->meshed.base.get(), s->meshed.scene.diagonal(), start,
+                                    nullptr, options, &stats);
+  EXPECT_TRUE(gathered.empty());
+  EXPECT_TRUE(stats.timedOut);
 }
 
 TEST(FinalGatherTest, SettingOffKeepsTheProgressiveSolution) {

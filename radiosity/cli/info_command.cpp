@@ -134,7 +134,7 @@ std::string gatherLine(const MeshedScene& meshed) {
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
 void printMeshing(const MeshedScene& meshed, double seconds) {
-  const auto& [scene, settings, mesh, direct, adaptive, base, gather] = meshed;
+  const auto& [scene, settings, mesh, direct, adaptive, base, gather, started] = meshed;
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   for (const std::string& note : scene.notes) std::printf("note        %s\n", note.c_str());
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",

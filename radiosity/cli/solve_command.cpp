@@ -112,6 +112,9 @@ void printOutcome(const RadiositySolve& solve, const Solution& solution, const s
   if (solution.clamped)
     std::fprintf(stderr, "radiosity: warning: %d elements had a negative channel (overshooting "
                          "before convergence), set to 0\n", solution.clamped);
+  if (solution.gather.timedOut)
+    std::fprintf(stderr, "radiosity: warning: final gather given up at the time limit (%.2f s of hemicubes); the "
+                         "progressive solution is shown, with its ambient term\n", solution.gather.hemicubeSeconds);
   if (solution.gathered) {
     const GatherStats& g = solution.gather;
     std::fprintf(stderr, "radiosity: progressive start %ld shots in %.2f s (unshot %.2e, %s); final gather at %d "

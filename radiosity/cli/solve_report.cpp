@@ -154,10 +154,11 @@ void addDisplayFields(Json& report, const MeshedScene& scene, const Solution& so
   report["negative_clamped"] = solution.clamped;
 }
 
-/// What the final gather did (null without one).
+/// What the final gather did (null without one; given up at the time limit: how long it ran).
 Json gatherBlock(const Solution& solution) {
-  if (!solution.gathered) return Json();
   const GatherStats& g = solution.gather;
+  if (g.timedOut) return {{"timed_out", true}, {"hemicube_seconds", g.hemicubeSeconds}};
+  if (!solution.gathered) return Json();
   return {{"points", g.points},           {"factors", g.factors},
           {"iterated", g.iterated},       {"iterations", g.iterations},
           {"residual", g.residual},       {"hemicube_seconds", g.hemicubeSeconds},
