@@ -9,48 +9,29 @@
 #include <emmintrin.h>
 #endif
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 #include "display/raster.h"
 #include "mesh/error.h"
 #include "mesh/patch_mesh.h"
+#include "radiosity/element_hierarchy.h"
+#include "radiosity/hemicube_culling.h"
 #include "radiosity/point_polygon.h"
 
 namespace rad {
 namespace {
 
-/// Item id of a triangle that occludes but receives nothing (seen from behind, or excluded).
-constexpr uint32_t kOccluder = raster::kNoItem - 1;
+static_assert(Hemicube::kOccluder == raster::kNoItem - 1, "the occluders' id is the one below no item");
+/// The probe cubes of Hemicube::cullingPays: how many, and their resolution.
+constexpr size_t kProbes = 8;
+constexpr int kProbeResolution = 32;
 
-/// Face f's clip-space coordinates of a point with local coordinates (a, b, c) along (u, v, n).
-/// Depth is reversed with z in [0, w] (z = near, so depth = near/distance, test GREATER): a
-/// 32-bit float then resolves distance to ~1e-7 relative at every range, so the near plane can
-/// sit very close. Side faces show only the upper half (c ≥ 0): y maps c ∈ [0, w] onto [-w, w].
-inline glm::vec4 faceClip(int f, const std::array<float, 3>& p, float near) {
-  float a = p[0], b = p[1], c = p[2];
-  switch (f) {
-    case 0: return {a, b, near, c};
-    case 1: return {b, 2 * c - a, near, a};
-    case 2: return {-b, 2 * c + a, near, -a};
-    case 3: return {-a, 2 * c - b, near, b};
-    default: return {a, 2 * c + b, near, -b};
-  }
-}
-
-/// The frustum planes of the five faces that local point (a, b, c) lies strictly outside of:
-/// bits 5f..5f+4 for face f. A triangle whose corners share a bit of face f shows nothing on
-/// it (its projection lies beyond that edge of the face, or behind the eye), so the face need
-/// not draw it. Face f's planes are those of faceClip(f): |x| ≤ w, |y| ≤ w, w > 0.
-inline uint32_t outsidePlanes(const std::array<float, 3>& p) {
-  const float a = p[0], b = p[1], c = p[2];
-  auto face = [](float x, float w, float c) {  // a side face: |x| ≤ w, 0 ≤ c ≤ w
-    return uint32_t(x > w) | uint32_t(-x > w) << 1 | uint32_t(c > w) << 2 | uint32_t(c < 0) << 3 |
-           uint32_t(w <= 0) << 4;
-  };
-  const uint32_t top = uint32_t(a > c) | uint32_t(-a > c) << 1 | uint32_t(b > c) << 2 |
-                       uint32_t(-b > c) << 3 | uint32_t(c <= 0) << 4;
-  return top | face(b, a, c) << 5 | face(b, -a, c) << 10 | face(a, b, c) << 15 | face(a, -b, c) << 20;
+/// Guards the geometries' hierarchies and culling decisions.
+std::mutex& geometryMutex() {
+  static std::mutex mutex;
+  return mutex;
 }
 
 /// The top face's R×R pixels: each pixel's factor is the exact factor of its square, seen
@@ -82,25 +63,21 @@ std::vector<double> sidePixelFactors(int R) {
   return side;
 }
 
-/// The accumulator's slots: the elements, then sky, then back faces (every item id past the
-/// elements but the sky's is an occluder's back); `seen` is the bit set of the slots written.
+/// Where the delta form factors go: the elements' sums (and which are in use), then sky and
+/// back faces (every item id past the elements but the sky's is an occluder's back).
 struct Slots {
   double* acc;
-  uint64_t* seen;
-  uint32_t n, skySlot, backSlot;
+  IndexSet& seen;
+  uint32_t n;
+  double sky = 0, back = 0;
 
-  uint32_t slot(uint32_t id) const { return id < n ? id : id == raster::kNoItem ? skySlot : backSlot; }
   void add(uint32_t id, double value) {
-    const uint32_t s = slot(id);
-    acc[s] += value;
-    seen[s >> 6] |= uint64_t(1) << (s & 63);
-  }
-  /// Slot s's sum, the slot cleared.
-  double take(uint32_t s) {
-    const double value = acc[s];
-    acc[s] = 0;
-    seen[s >> 6] &= ~(uint64_t(1) << (s & 63));
-    return value;
+    if (id < n) {
+      acc[id] += value;
+      seen.insert(id);
+    } else {
+      (id == raster::kNoItem ? sky : back) += value;
+    }
   }
 };
 
@@ -180,6 +157,16 @@ int HemicubeGeometry::addTriangle(const glm::dvec3& a, const glm::dvec3& b, cons
   return int(normals.size()) - 1;
 }
 
+std::shared_ptr<const ElementHierarchy> HemicubeGeometry::hierarchy() const {
+  std::lock_guard<std::mutex> lock(geometryMutex());
+  const bool current = hierarchy_ && hierarchy_->elementCount() == elementCount() &&
+                       hierarchy_->vertexCount() == positions.size();
+  if (current || elementCount() == 0) return hierarchy_;
+  hierarchy_ = std::make_shared<const ElementHierarchy>(positions, indices, normals);
+  cullingPays_ = -1;
+  return hierarchy_;
+}
+
 const DeltaFormFactors& DeltaFormFactors::forResolution(int R) {
   static std::mutex mutex;
   static std::map<int, std::unique_ptr<DeltaFormFactors>> cache;
@@ -203,147 +190,217 @@ const DeltaFormFactors& DeltaFormFactors::forResolution(int R) {
 }
 
 Hemicube::Hemicube(const HemicubeGeometry& geometry, int resolution, double sceneSize)
-    : geometry_(geometry), resolution_(resolution), near_(kNearPlane * sceneSize),
-      eyeOffset_(kEyeOffset * sceneSize), delta_(DeltaFormFactors::forResolution(resolution)) {
+    : geometry_(geometry), hierarchy_(geometry.hierarchy()), resolution_(resolution),
+      near_(kNearPlane * sceneSize), eyeOffset_(kEyeOffset * sceneSize),
+      delta_(DeltaFormFactors::forResolution(resolution)) {
   RAD_CHECK(sceneSize > 0);
   faces_[0] = std::make_unique<raster::Target>(resolution, resolution, true, false);
   for (int f = 1; f < 5; ++f)
     faces_[f] = std::make_unique<raster::Target>(resolution, resolution / 2, true, false);
-  ids_.resize(geometry.elementCount());
-  local_.resize(geometry.positions.size());
-  outside_.resize(geometry.positions.size());
-  needed_.assign(geometry.positions.size(), 0);
-  faces_of_.resize(geometry.elementCount());
-  slot_.resize(5 * geometry.positions.size());
-  accumulator_.assign(geometry.elementCount() + 2, 0.0);
-  seen_.assign((geometry.elementCount() + 2 + 63) / 64, 0);
+  const size_t elements = geometry.elementCount();
+  excluded_.assign(elements, 0);
+  accumulator_.assign(elements, 0.0);
+  seen_.resize(elements);
 }
 
 Hemicube::~Hemicube() = default;
 
+void Hemicube::setCulling(HemicubeCulling culling) {
+  if (culling == HemicubeCulling::Auto)
+    culling = hierarchy_ && cullingPays(geometry_, near_ / kNearPlane) ? HemicubeCulling::Hidden
+                                                                        : HemicubeCulling::None;
+  if (culling != HemicubeCulling::None) RAD_CHECK(hierarchy_ != nullptr || geometry_.elementCount() == 0);
+  culling_ = culling;
+  const size_t elements = geometry_.elementCount();
+  if (culling_ != HemicubeCulling::None && pendingAt_.size() != elements) {
+    pendingAt_.resize(elements);
+    pendingSet_.resize(elements);
+  }
+}
+
+bool Hemicube::cullingPays(const HemicubeGeometry& geometry, double sceneSize) {
+  {
+    std::lock_guard<std::mutex> lock(geometryMutex());
+    if (geometry.cullingPays_ >= 0) return geometry.cullingPays_ == 1;
+  }
+  // Probe cubes from element centroids spread evenly over the element numbers (surface by
+  // surface), each its own element excluded, as a shooter's.
+  Hemicube probe(geometry, kProbeResolution, sceneSize);
+  probe.setCulling(HemicubeCulling::Hidden);
+  const size_t elements = geometry.elementCount();
+  FormFactors ff;
+  double sorted = 0;
+  for (size_t k = 0; k < kProbes; ++k) {
+    const size_t e = (2 * k + 1) * elements / (2 * kProbes);
+    const uint32_t* c = geometry.indices.data() + 3 * e;
+    const glm::dvec3 centroid = (geometry.positions[c[0]] + geometry.positions[c[1]] + geometry.positions[c[2]]) / 3.0;
+    probe.compute(centroid, geometry.normals[e], hemicubeRotation(0, e, 0), ff, {int(e)});
+    sorted += double(probe.sortedCount_);
+  }
+  const bool pays = sorted < kCullingPaysBelow * double(kProbes) * double(elements);
+  std::lock_guard<std::mutex> lock(geometryMutex());
+  geometry.cullingPays_ = pays;
+  return pays;
+}
+
 void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation,
                        FormFactors& out, const std::vector<int>& excluded) {
   prepare(x, n, rotation, excluded);
-  renderFaces();
+  drawBatches(false);
   accumulate(out);
 }
 
 void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
                        const std::vector<int>& excluded) {
-  // A frame turned about n by 2π·rotation, from a tangent least aligned with n.
-  glm::dvec3 t = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  glm::dvec3 u0 = glm::normalize(glm::cross(n, t)), v0 = glm::cross(n, u0);
-  double angle = 2 * M_PI * rotation;
-  glm::dvec3 u = std::cos(angle) * u0 + std::sin(angle) * v0;
-  glm::dvec3 v = glm::cross(n, u);
-  glm::dvec3 eye = x + eyeOffset_ * n;
-
-  // Elements seen from behind occlude but receive nothing; so do the excluded ones.
-  const auto& P = geometry_.positions;
-  const auto& I = geometry_.indices;
-  for (size_t e = 0; e < ids_.size(); ++e)
-    ids_[e] = glm::dot(geometry_.normals[e], eye - P[I[3 * e]]) > 0 ? uint32_t(e) : kOccluder;
-  for (int e : excluded) ids_[e] = kOccluder;
-
-  // Local coordinates in double, relative to the eye, then float for the raster.
-  for (size_t i = 0; i < P.size(); ++i) {
-    glm::dvec3 d = P[i] - eye;
-    local_[i] = {float(glm::dot(d, u)), float(glm::dot(d, v)), float(glm::dot(d, n))};
-    outside_[i] = outsidePlanes(local_[i]);
+  if (culling_ == HemicubeCulling::Auto) setCulling(HemicubeCulling::Auto);
+  frame_ = HemicubeFrame::make(x, n, rotation, eyeOffset_);
+  if (++stamp_ == 0) {  // wrapped: forget every old stamp
+    std::fill(excluded_.begin(), excluded_.end(), 0u);
+    stamp_ = 1;
   }
-  sortToFaces();
+  for (int e : excluded) excluded_[size_t(e)] = stamp_;
+  counts_ = HemicubeCounts();
+  for (int f = 0; f < 5; ++f) {
+    FaceDraw& draw = draws_[size_t(f)];
+    draw.clip.clear(), draw.indices.clear(), draw.ids.clear(), draw.batches.clear();
+    drawnBatches_[size_t(f)] = 0;
+    faces_[f]->clearDepth(0.0f);
+    faces_[f]->clearItem();
+  }
+  pending_.clear();
+  sortedCount_ = 0;
+  if (culling_ == HemicubeCulling::None)
+    sortAll();
+  else if (hierarchy_)
+    traverse();
+  for (const FaceDraw& draw : draws_) counts_.drawn += draw.ids.size();
+  counts_.batches = draws_[0].batches.size();
 }
 
-void Hemicube::sortToFaces() {
-  // Only triangles reaching above the base plane can show on any face (often half the scene
-  // is behind the point), and most of those on one face only. Each face gets its own
-  // triangles, in element order, and the clip-space vertices they use: first the faces of
-  // each triangle (and so of its corners), then each face's vertices, then its indices.
+uint32_t Hemicube::facesShowing(uint32_t shared) {
+  if (shared & kBelowBase) return 0;
+  uint32_t faces = 0;
+  for (int f = 0; f < 5; ++f) faces |= uint32_t(((shared >> (5 * f)) & 31u) == 0) << f;
+  return faces;
+}
+
+uint32_t Hemicube::itemId(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const {
+  // Elements seen from behind occlude but receive nothing; so do the excluded ones.
+  if (excluded_[e] == stamp_) return kOccluder;
+  return glm::dot(normal, frame_.eye - corner) > 0 ? e : kOccluder;
+}
+
+void Hemicube::sortAll() {
+  // Often half the scene is behind the point, and most of the rest shows on one face only.
+  // Three linear passes: the faces of each triangle (and so of its corners), then each
+  // face's vertices, then its indices.
+  const auto& P = geometry_.positions;
   const auto& I = geometry_.indices;
-  const size_t elements = ids_.size(), vertices = local_.size();
+  const size_t elements = geometry_.elementCount(), vertices = P.size();
+  if (local_.size() != vertices) {
+    local_.resize(vertices), outside_.resize(vertices), needed_.assign(vertices, 0);
+    slot_.resize(5 * vertices), facesOf_.resize(elements);
+  }
+  for (size_t i = 0; i < vertices; ++i) {
+    const glm::dvec3 p = frame_.local(P[i]);
+    local_[i] = {float(p.x), float(p.y), float(p.z)};
+    outside_[i] = outsidePlanes(local_[i][0], local_[i][1], local_[i][2]);
+  }
   std::array<size_t, 5> triangles{};
   for (size_t e = 0; e < elements; ++e) {
     const uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
-    const uint32_t shared = outside_[a] & outside_[b] & outside_[c];
-    // Bit 4 of the top face: no corner above the base plane.
-    uint32_t faces = 0;
-    if (!(shared & 16u))
-      for (int f = 0; f < 5; ++f) {
-        const uint32_t shows = ((shared >> (5 * f)) & 31u) == 0;
-        faces |= shows << f;
-        triangles[size_t(f)] += shows;
-      }
-    faces_of_[e] = uint8_t(faces);
+    const uint32_t faces = facesShowing(outside_[a] & outside_[b] & outside_[c]);
+    for (int f = 0; f < 5; ++f) triangles[size_t(f)] += (faces >> f) & 1u;
+    facesOf_[e] = uint8_t(faces);
     needed_[a] |= uint8_t(faces), needed_[b] |= uint8_t(faces), needed_[c] |= uint8_t(faces);
   }
+  placeNeeded();
+  emitAll(triangles);
+  sortedCount_ = elements;
+}
+
+void Hemicube::placeNeeded() {
   const float near = float(near_);
-  for (auto& draw : draws_) draw.clip.clear();
+  const size_t vertices = local_.size();
   for (size_t v = 0; v < vertices; ++v) {
     if (!needed_[v]) continue;
     for (uint32_t faces = needed_[v]; faces; faces &= faces - 1) {
       const int f = __builtin_ctz(faces);
       FaceDraw& draw = draws_[size_t(f)];
       slot_[size_t(f) * vertices + v] = uint32_t(draw.clip.size());
-      draw.clip.push_back(rad::faceClip(f, local_[v], near));
+      const std::array<float, 3>& p = local_[v];
+      draw.clip.push_back(faceClip(f, p[0], p[1], p[2], near));
     }
     needed_[v] = 0;
   }
+}
+
+void Hemicube::emitAll(const std::array<size_t, 5>& triangles) {
+  const auto& P = geometry_.positions;
+  const auto& I = geometry_.indices;
+  const size_t vertices = local_.size();
   std::array<uint32_t*, 5> index;
   std::array<uint32_t*, 5> id;
   for (size_t f = 0; f < 5; ++f) {
     draws_[f].indices.resize(3 * triangles[f]);
     draws_[f].ids.resize(triangles[f]);
+    draws_[f].batches.push_back({0, 0});
     index[f] = draws_[f].indices.data();
     id[f] = draws_[f].ids.data();
   }
-  for (size_t e = 0; e < elements; ++e)
-    for (uint32_t faces = faces_of_[e]; faces; faces &= faces - 1) {
+  for (size_t e = 0; e < facesOf_.size(); ++e) {
+    if (!facesOf_[e]) continue;
+    const uint32_t item = itemId(uint32_t(e), geometry_.normals[e], P[I[3 * e]]);
+    for (uint32_t faces = facesOf_[e]; faces; faces &= faces - 1) {
       const size_t f = size_t(__builtin_ctz(faces));
       const uint32_t* slot = slot_.data() + f * vertices;
       *index[f]++ = slot[I[3 * e]];
       *index[f]++ = slot[I[3 * e + 1]];
       *index[f]++ = slot[I[3 * e + 2]];
-      *id[f]++ = ids_[e];
+      *id[f]++ = item;
     }
+  }
 }
 
-void Hemicube::renderFaces() {
+void Hemicube::drawBatches(bool forTests) {
   raster::State state;
   state.depthFunc = raster::DepthFunc::Greater;
   state.clipDepth = raster::ClipDepth::ZeroToOne;
-  for (int f = 0; f < 5; ++f) {
-    const FaceDraw& draw = draws_[size_t(f)];
+  for (size_t f = 0; f < 5; ++f) {
+    const FaceDraw& draw = draws_[f];
     raster::Target& target = *faces_[f];
-    target.clearDepth(0.0f);
-    target.clearItem();
-    if (draw.ids.empty()) continue;
-    raster::drawTriangles(target, state, draw.clip.data(), draw.clip.size(), draw.indices.data(),
-                          draw.ids.size(), draw.ids.data());
+    const size_t before = drawnBatches_[f];
+    for (size_t& b = drawnBatches_[f]; b < draw.batches.size(); ++b) {
+      const FaceDraw::Batch& batch = draw.batches[b];
+      const bool last = b + 1 == draw.batches.size();
+      const size_t vertexEnd = last ? draw.clip.size() : draw.batches[b + 1].firstVertex;
+      const size_t triangleEnd = last ? draw.ids.size() : draw.batches[b + 1].firstTriangle;
+      if (triangleEnd == batch.firstTriangle) continue;
+      const uint32_t* indices = draw.indices.empty() ? nullptr : draw.indices.data() + 3 * size_t(batch.firstTriangle);
+      raster::drawTriangles(target, state, draw.clip.data() + batch.firstVertex, vertexEnd - batch.firstVertex,
+                            indices, triangleEnd - batch.firstTriangle, draw.ids.data() + batch.firstTriangle);
+    }
+    if (forTests && drawnBatches_[f] != before)
+      pyramids_[f].build(target.depth.data(), target.width, target.height);
   }
 }
 
 void Hemicube::accumulate(FormFactors& out) {
   out.elements.clear();
   out.factors.clear();
-  const uint32_t n = uint32_t(geometry_.elementCount());
-  Slots slots{accumulator_.data(), seen_.data(), n, n, n + 1};
+  Slots slots{accumulator_.data(), seen_, uint32_t(geometry_.elementCount())};
   for (int f = 0; f < 5; ++f)
     accumulateFace(faces_[f]->item.data(), (f == 0 ? delta_.top : delta_.side).data(),
                    faces_[f]->item.size(), slots);
-  out.sky = slots.take(slots.skySlot);
-  out.backFaces = slots.take(slots.backSlot);
-  // Ascending element order, from the bit set of the slots seen.
-  for (size_t w = 0; w < seen_.size(); ++w) {
-    for (uint64_t bits = seen_[w]; bits; bits &= bits - 1) {
-      const uint32_t e = uint32_t(w * 64 + size_t(__builtin_ctzll(bits)));
-      if (accumulator_[e] != 0) {
-        out.elements.push_back(int(e));
-        out.factors.push_back(accumulator_[e]);
-      }
-      accumulator_[e] = 0;
+  out.sky = slots.sky;
+  out.backFaces = slots.back;
+  seen_.drain([&](uint32_t e) {
+    if (accumulator_[e] != 0) {
+      out.elements.push_back(int(e));
+      out.factors.push_back(accumulator_[e]);
     }
-    seen_[w] = 0;
-  }
+    accumulator_[e] = 0;
+  });
 }
 
 double hemicubeRotation(uint64_t seed, uint64_t shooter, uint64_t sample) {

@@ -204,17 +204,20 @@ SceneAndMesh meshed(const std::string& name, double element, double patch) {
 
 TEST(HemicubeSceneTest, ClosedCubeRowsSumToOne) {
   SceneAndMesh m = meshed("cube.json", 0.125, 0.25);
-  Hemicube hemicube(m.geometry, 256, m.scene.diagonal());
-  FormFactors ff;
-  int tested = 0;
-  for (int e = 0; e < m.mesh.elementCount(); e += 37, ++tested) {
-    hemicube.compute(m.mesh.centroid(e), m.mesh.normal(e), hemicubeRotation(1, e, 0), ff, {e});
-    double sum = 0;
-    for (double f : ff.factors) sum += f;
-    EXPECT_NEAR(sum, 1.0, kClosure) << "element " << e << ": sky " << ff.sky << ", back "
-                                    << ff.backFaces;
+  for (HemicubeCulling culling : {HemicubeCulling::None, HemicubeCulling::Hidden}) {
+    Hemicube hemicube(m.geometry, 256, m.scene.diagonal());
+    hemicube.setCulling(culling);
+    FormFactors ff;
+    int tested = 0;
+    for (int e = 0; e < m.mesh.elementCount(); e += 37, ++tested) {
+      hemicube.compute(m.mesh.centroid(e), m.mesh.normal(e), hemicubeRotation(1, e, 0), ff, {e});
+      double sum = 0;
+      for (double f : ff.factors) sum += f;
+      EXPECT_NEAR(sum, 1.0, kClosure) << "element " << e << ", culling " << int(culling) << ": sky " << ff.sky
+                                      << ", back " << ff.backFaces;
+    }
+    EXPECT_GT(tested, 20);
   }
-  EXPECT_GT(tested, 20);
 }
 
 TEST(HemicubeSceneTest, OpenCornellBoxFactorsPlusSkyAreOneAndMatchTheLightsOracle) {

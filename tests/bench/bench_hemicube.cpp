@@ -1,11 +1,15 @@
 // One hemicube evaluation on the Cornell box, at about 10 000 and 100 000 triangles and
-// R = 128, 256, 512: our raster core, and the identical item buffers through OSMesa.
+// R = 32 ... 512: our raster core, and the identical item buffers through OSMesa; then in a
+// generated building of k × k rooms (about 12 000 triangles each), from the surfaces of its
+// middle room. The last argument is the culling: 0 none (every element), 1 hidden (subtrees
+// below the base plane or hidden), 2 auto (the default: 1 where it pays, else 0).
 // One iteration is one hemicube, so "Time" is the time per hemicube; wall-clock time is
 // measured because llvmpipe draws on worker threads (its default: one per core).
 //   build/bin/bench_hemicube [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -15,6 +19,7 @@
 #include "mesh/scene.h"
 #include "radiosity/hemicube.h"
 #include "tests/bench/osmesa_item_buffer.h"
+#include "tests/room_grid.h"
 
 namespace {
 
@@ -49,16 +54,27 @@ struct Points {
 };
 
 /// Milliseconds per hemicube of the last run of each (backend, R, thousands of triangles),
-/// for the ratio table printed at the end.
+/// for the ratio table printed at the end: the core's with its culling as the backend.
 std::map<std::tuple<std::string, int, int>, double> msPerHemicube;
+
+/// The culling of benchmark argument `arg` and its name.
+rad::HemicubeCulling culling(int64_t arg) {
+  const rad::HemicubeCulling c[] = {rad::HemicubeCulling::None, rad::HemicubeCulling::Hidden,
+                                    rad::HemicubeCulling::Auto};
+  return c[arg];
+}
+const char* cullingName(int64_t arg) {
+  const char* names[] = {"none", "hidden", "auto"};
+  return names[arg];
+}
 
 /// Times the benchmark loop by the wall clock, as Google Benchmark's real time does.
 class Stopwatch {
  public:
   explicit Stopwatch(benchmark::State& s) : state_(s), start_(std::chrono::steady_clock::now()) {}
-  void record(const std::string& backend) {
+  double record(const std::string& backend) {
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-    msPerHemicube[{backend, int(state_.range(0)), int(state_.range(1))}] = ms / double(state_.iterations());
+    return msPerHemicube[{backend, int(state_.range(0)), int(state_.range(1))}] = ms / double(state_.iterations());
   }
 
  private:
@@ -76,6 +92,7 @@ void setCounters(benchmark::State& state, const Cornell& c) {
 void BM_HemicubeCore(benchmark::State& state) {
   const Cornell& c = cornell(state.range(1) == 10 ? kEdge10k : kEdge100k);
   rad::Hemicube hemicube(c.geometry, int(state.range(0)), c.scene.diagonal());
+  hemicube.setCulling(culling(state.range(2)));
   rad::FormFactors ff;
   Points points(c.mesh);
   Stopwatch watch(state);
@@ -84,7 +101,7 @@ void BM_HemicubeCore(benchmark::State& state) {
     hemicube.compute(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), ff, {e});
     benchmark::DoNotOptimize(ff.sky);
   }
-  watch.record("core");
+  watch.record(std::string("core ") + cullingName(state.range(2)));
   setCounters(state, c);
 }
 
@@ -92,6 +109,7 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
   const Cornell& c = cornell(state.range(1) == 10 ? kEdge10k : kEdge100k);
   const int R = int(state.range(0));
   rad::Hemicube hemicube(c.geometry, R, c.scene.diagonal());
+  hemicube.setCulling(rad::HemicubeCulling::None);  // prepare() draws nothing itself
   static std::unique_ptr<bench::OsMesaItemBuffer> gl;
   if (!gl) gl = std::make_unique<bench::OsMesaItemBuffer>(1024, 1024);
   state.SetLabel(gl->renderer());
@@ -103,8 +121,8 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
     hemicube.prepare(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), {e});
     for (int f = 0; f < 5; ++f) {
       const rad::Hemicube::FaceDraw& draw = hemicube.faceDraw(f);
-      gl->draw(R, f == 0 ? R : R / 2, draw.clip.data(), draw.clip.size(), draw.indices.data(),
-               draw.ids.size(), draw.ids.data(), items);
+      gl->draw(R, f == 0 ? R : R / 2, draw.clip.data(), draw.clip.size(), nullptr, draw.ids.size(),
+               draw.ids.data(), items);
       benchmark::DoNotOptimize(items.data());
     }
   }
@@ -112,9 +130,80 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
   setCounters(state, c);
 }
 
-// Arguments: resolution R, then 10 or 100 (thousand triangles).
+/// The building's triangles' legs (m): about 12 000 triangles a room.
+constexpr double kBuildingEdge = 0.1;
+
+struct Building {
+  rad::test::RoomGrid grid;
+  rad::HemicubeGeometry geometry;
+  std::vector<int> middle;  ///< the elements of the middle room's own surfaces
+};
+
+/// The building of k × k rooms; cached across benchmarks.
+const Building& building(int k) {
+  static std::map<int, std::unique_ptr<Building>> cache;
+  auto& b = cache[k];
+  if (!b) {
+    b = std::make_unique<Building>();
+    b->grid.roomsX = b->grid.roomsZ = k;
+    b->grid.edge = kBuildingEdge;
+    b->geometry = rad::test::roomGrid(b->grid);
+    const glm::dvec3 centre = b->grid.centre(k / 2, k / 2, 0);
+    const double inner = 0.5 * (b->grid.room - b->grid.wall);
+    const auto& g = b->geometry;
+    for (size_t e = 0; e < g.elementCount(); ++e) {
+      const glm::dvec3 p = g.positions[g.indices[3 * e]];
+      if (std::abs(p.x - centre.x) < inner && std::abs(p.z - centre.z) < inner) b->middle.push_back(int(e));
+    }
+    b->geometry.hierarchy();  // built here, not in the first timed hemicube
+  }
+  return *b;
+}
+
+/// The centroid of element e.
+glm::dvec3 centroid(const rad::HemicubeGeometry& g, int e) {
+  const uint32_t* c = g.indices.data() + 3 * size_t(e);
+  return (g.positions[c[0]] + g.positions[c[1]] + g.positions[c[2]]) / 3.0;
+}
+
+/// Milliseconds per hemicube in the building, per (culling, R, rooms per side).
+std::map<std::tuple<int, int, int>, double> buildingMs;
+/// Triangles in the building and drawn per hemicube (summed over the faces), per rooms per side
+/// and (culling, R, rooms per side).
+std::map<int, double> buildingTriangles;
+std::map<std::tuple<int, int, int>, double> buildingDrawn;
+
+void BM_HemicubeBuilding(benchmark::State& state) {
+  const int R = int(state.range(0)), k = int(state.range(1)), cull = int(state.range(2));
+  const Building& b = building(k);
+  const double size = b.grid.room * k * std::sqrt(2.0);
+  rad::Hemicube hemicube(b.geometry, R, size);
+  hemicube.setCulling(culling(cull));
+  rad::FormFactors ff;
+  size_t index = 0;
+  double drawn = 0, hidden = 0, tested = 0;
+  Stopwatch watch(state);
+  for (auto _ : state) {
+    index = (index + 7919) % b.middle.size();
+    const int e = b.middle[index];
+    hemicube.compute(centroid(b.geometry, e), b.geometry.normals[size_t(e)], rad::hemicubeRotation(1, uint64_t(e), 0), ff, {e});
+    drawn += double(hemicube.counts().drawn), hidden += double(hemicube.counts().hidden);
+    tested += double(hemicube.counts().tested);
+    benchmark::DoNotOptimize(ff.sky);
+  }
+  buildingMs[{cull, R, k}] = watch.record("building");
+  buildingTriangles[k] = double(b.geometry.elementCount());
+  buildingDrawn[{cull, R, k}] = drawn / double(state.iterations());
+  state.counters["triangles"] = double(b.geometry.elementCount());
+  state.counters["drawn"] = benchmark::Counter(drawn, benchmark::Counter::kAvgIterations);
+  state.counters["hidden"] = benchmark::Counter(hidden, benchmark::Counter::kAvgIterations);
+  state.counters["tested"] = benchmark::Counter(tested, benchmark::Counter::kAvgIterations);
+  state.SetLabel(cullingName(cull));
+}
+
+// Arguments: resolution R, then 10 or 100 (thousand triangles), then the culling.
 BENCHMARK(BM_HemicubeCore)
-    ->ArgsProduct({{32, 64, 128, 256, 512}, {10, 100}})
+    ->ArgsProduct({{32, 64, 128, 256, 512}, {10, 100}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_HemicubeOsMesa)
@@ -122,15 +211,40 @@ BENCHMARK(BM_HemicubeOsMesa)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-/// The ratio llvmpipe time / our time for every case both backends ran.
+// Arguments: resolution R, rooms per side, culling.
+BENCHMARK(BM_HemicubeBuilding)
+    ->ArgsProduct({{32, 64}, {3, 6, 9}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The ratio llvmpipe time / our time (drawing the same triangles, no culling) for every
+/// case both backends ran.
 void printRatios() {
   std::printf("\nhemicube: ms per hemicube, our core vs llvmpipe (OSMesa), Cornell box\n");
   std::printf("%6s %10s %10s %10s %8s\n", "R", "triangles", "core", "llvmpipe", "ratio");
   for (const auto& [key, core] : msPerHemicube) {
     auto [backend, R, k] = key;
     auto gl = msPerHemicube.find({"osmesa", R, k});
-    if (backend != "core" || gl == msPerHemicube.end()) continue;
+    if (backend != "core none" || gl == msPerHemicube.end()) continue;
     std::printf("%6d %9dk %10.3f %10.3f %7.1fx\n", R, k, core, gl->second, gl->second / core);
+  }
+}
+
+/// The building's ms per hemicube with each culling, and the speed-up of the default (auto).
+void printBuilding() {
+  if (buildingMs.empty()) return;
+  std::printf("\nhemicube in a building of k x k rooms, from the middle room's surfaces\n");
+  std::printf("%4s %3s %10s %9s %9s %9s %8s %10s\n", "R", "k", "triangles", "ms none", "ms hidden", "ms auto",
+              "speed-up", "drawn");
+  auto ms = [](int cull, int R, int k) {
+    auto at = buildingMs.find({cull, R, k});
+    return at == buildingMs.end() ? NAN : at->second;
+  };
+  for (const auto& [key, autoMs] : buildingMs) {
+    auto [cull, R, k] = key;
+    if (cull != 2) continue;
+    std::printf("%4d %3d %10.0f %9.3f %9.3f %9.3f %7.1fx %10.0f\n", R, k, buildingTriangles[k], ms(0, R, k),
+                ms(1, R, k), autoMs, ms(0, R, k) / autoMs, buildingDrawn[key]);
   }
 }
 
@@ -141,6 +255,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   printRatios();
+  printBuilding();
   benchmark::Shutdown();
   return 0;
 }
