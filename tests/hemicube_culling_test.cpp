@@ -12,6 +12,7 @@
 #include "mesh/scene.h"
 #include "radiosity/element_hierarchy.h"
 #include "radiosity/hemicube.h"
+#include "radiosity/hemicube_culling.h"
 #include "radiosity/hemicube_depth_pyramid.h"
 #include "radiosity/hemicube_index_set.h"
 #include "tests/room_grid.h"
@@ -111,6 +112,54 @@ TEST(ElementHierarchyTest, EveryElementOnceInLeavesWithinTheirBoxes) {
   }
   EXPECT_EQ(nodes[0].count, g.elementCount());
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(g.elementCount()));
+}
+
+/// Five faces' depths as a cube at the origin looking up +z (rotation 0) holds them when a
+/// wall at height `wall` covers its top face where x < `edge` (in the face's [-1, 1]), and
+/// nothing else was drawn.
+struct WallDepths {
+  static constexpr int kR = 32;
+  static constexpr double kNear = 1e-3;
+  HemicubeFrame frame = HemicubeFrame::make({0, 0, 0}, {0, 0, 1}, 0, 0);
+  std::array<std::vector<float>, 5> depth;
+  std::array<DepthPyramid, 5> pyramids;
+
+  WallDepths(double wall, double edge) {
+    for (int f = 0; f < 5; ++f) depth[size_t(f)].assign(size_t(kR) * (f == 0 ? kR : kR / 2), 0.0f);
+    for (int j = 0; j < kR; ++j)
+      for (int i = 0; i < kR; ++i)
+        if (-1 + (i + 0.5) * 2.0 / kR < edge) depth[0][size_t(j) * kR + size_t(i)] = float(kNear / wall);
+    for (int f = 0; f < 5; ++f) pyramids[size_t(f)].build(depth[size_t(f)].data(), kR, f == 0 ? kR : kR / 2);
+  }
+  /// Whether the box [lo, hi] (given in the cube's frame u, v, n) is hidden.
+  bool hidden(const glm::dvec3& lo, const glm::dvec3& hi) const {
+    const glm::dvec3 a = lo.x * frame.u + lo.y * frame.v + lo.z * frame.n;
+    const glm::dvec3 b = hi.x * frame.u + hi.y * frame.v + hi.z * frame.n;
+    return boxHidden(frame, glm::min(a, b), glm::max(a, b), {pyramids, kR, kNear});
+  }
+};
+
+TEST(BoxCullingTest, HiddenOnlyWhollyBehindWhatCoversItsPixels) {
+  const WallDepths all(10, 2), half(10, 0);  // the wall over the whole top face, or x < 0
+  // Seen on the top face only (|x|, |y| < z): hidden just behind the wall, not just before.
+  EXPECT_TRUE(all.hidden({-1, -1, 10.1}, {1, 1, 11}));
+  EXPECT_FALSE(all.hidden({-1, -1, 9.9}, {1, 1, 11}));
+  EXPECT_FALSE(all.hidden({-1, -1, 10.0}, {1, 1, 11})) << "touching the wall: within the depth margin";
+  // Behind the half wall: hidden where it covers, not where a pixel still shows the sky.
+  EXPECT_TRUE(half.hidden({-4, -1, 10.1}, {-1, 1, 11}));
+  EXPECT_FALSE(half.hidden({-4, -1, 10.1}, {0.5, 1, 11}));
+  // Reaching a side face, where nothing was drawn.
+  EXPECT_FALSE(all.hidden({-1, -1, 10.1}, {12, 1, 11}));
+  // Reaching the eye's near plane on the top face.
+  EXPECT_FALSE(all.hidden({-1, -1, 0}, {1, 1, 11}));
+}
+
+TEST(BoxCullingTest, BelowTheBaseOnlyWhenNoPointIsAbove) {
+  const HemicubeFrame frame = HemicubeFrame::make({1, 2, 3}, glm::normalize(glm::dvec3(1, 1, 0)), 0.3, 0);
+  // The base plane x + y = 3 through the eye.
+  EXPECT_TRUE(boxBelowBase(frame, {-5, -5, -5}, {1, 1.9, 5}));
+  EXPECT_FALSE(boxBelowBase(frame, {-5, -5, -5}, {1, 2.1, 5}));
+  EXPECT_FALSE(boxBelowBase(frame, {-5, -5, -5}, {1, 2, 5})) << "touching the plane";
 }
 
 // ---- Culled hemicubes against the same ones drawing every element --------------------------

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -211,6 +212,83 @@ BENCHMARK(BM_HemicubeOsMesa)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+/// The interiors of ../shared/scenes/bitterli (CC BY 3.0), when at hand.
+const char* const kInteriors[] = {"staircase2", "living-room", "staircase"};
+
+/// Adds triangle (a, b, c) split `levels` times into four by its edge midpoints.
+void addSplit(rad::HemicubeGeometry& g, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int levels) {
+  if (levels == 0) {
+    if (glm::length(glm::cross(b - a, c - a)) > 0) g.addTriangle(a, b, c);
+    return;
+  }
+  const glm::dvec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+  for (const auto& t : {std::array{a, ab, ca}, std::array{ab, b, bc}, std::array{ca, bc, c}, std::array{ab, bc, ca}})
+    addSplit(g, t[0], t[1], t[2], levels - 1);
+}
+
+struct Interior {
+  rad::Scene scene;
+  rad::HemicubeGeometry geometry;
+};
+
+/// Interior `index`'s faces as fans of triangles, each split `levels` times (×4^levels
+/// triangles), or null when the scene is not at hand; cached across benchmarks.
+const Interior* interior(int index, int levels) {
+  static std::map<std::pair<int, int>, std::unique_ptr<Interior>> cache;
+  auto& in = cache[{index, levels}];
+  const std::string path = std::string(RAD_SOURCE_DIR) + "/../shared/scenes/bitterli/" + kInteriors[index] + "/scene.json";
+  if (!in && std::ifstream(path)) {
+    in = std::make_unique<Interior>();
+    in->scene = rad::loadScene(path);
+    for (const rad::Surface& s : in->scene.surfaces)
+      for (const rad::Polygon& p : s.polygons)
+        for (size_t k = 1; k + 1 < p.outer.size(); ++k) addSplit(in->geometry, p.outer[0], p.outer[k], p.outer[k + 1], levels);
+    in->geometry.hierarchy();
+  }
+  return in.get();
+}
+
+/// Milliseconds per hemicube in an interior, per (culling, R, interior, levels).
+std::map<std::tuple<int, int, int, int>, double> interiorMs;
+std::map<std::pair<int, int>, double> interiorTriangles;
+
+void BM_HemicubeInterior(benchmark::State& state) {
+  const int R = int(state.range(0)), index = int(state.range(1)), levels = int(state.range(2));
+  const int cull = int(state.range(3));
+  const Interior* in = interior(index, levels);
+  if (!in) {
+    state.SkipWithError("the scene is not at hand in ../shared/scenes/bitterli");
+    return;
+  }
+  const rad::HemicubeGeometry& g = in->geometry;
+  rad::Hemicube hemicube(g, R, in->scene.diagonal());
+  hemicube.setCulling(culling(cull));
+  rad::FormFactors ff;
+  size_t e = 0;
+  double drawn = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    e = (e + 7919) % g.elementCount();
+    hemicube.compute(centroid(g, int(e)), g.normals[e], rad::hemicubeRotation(1, e, 0), ff, {int(e)});
+    drawn += double(hemicube.counts().drawn);
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  interiorMs[{cull, R, index, levels}] = ms / double(state.iterations());
+  interiorTriangles[{index, levels}] = double(g.elementCount());
+  state.counters["triangles"] = double(g.elementCount());
+  state.counters["drawn"] = benchmark::Counter(drawn, benchmark::Counter::kAvgIterations);
+  state.SetLabel(std::string(kInteriors[index]) + " " + cullingName(cull) + (hemicube.culling() == rad::HemicubeCulling::Hidden ? " (hidden)" : " (none)"));
+}
+
+/// Arguments: resolution R, interior, splits of each triangle into four (Modern Hall, the
+/// smallest, up to 456 000 triangles; the others up to 1 000 000), culling.
+void interiorArguments(benchmark::internal::Benchmark* b) {
+  for (int R : {32, 64})
+    for (auto [index, levels] : {std::pair{0, 0}, {0, 1}, {0, 2}, {1, 0}, {1, 1}, {2, 0}, {2, 1}})
+      for (int cull : {0, 1, 2}) b->Args({R, index, levels, cull});
+}
+BENCHMARK(BM_HemicubeInterior)->Apply(interiorArguments)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Arguments: resolution R, rooms per side, culling.
 BENCHMARK(BM_HemicubeBuilding)
     ->ArgsProduct({{32, 64}, {3, 6, 9}, {0, 1, 2}})
@@ -248,6 +326,24 @@ void printBuilding() {
   }
 }
 
+/// Each interior's ms per hemicube with each culling.
+void printInteriors() {
+  if (interiorMs.empty()) return;
+  std::printf("\nhemicube in the interiors of ../shared/scenes/bitterli, from element centroids\n");
+  std::printf("%4s %-12s %10s %9s %9s %9s %8s\n", "R", "interior", "triangles", "ms none", "ms hidden", "ms auto",
+              "speed-up");
+  auto ms = [](int cull, int R, int i, int l) {
+    auto at = interiorMs.find({cull, R, i, l});
+    return at == interiorMs.end() ? NAN : at->second;
+  };
+  for (const auto& [key, autoMs] : interiorMs) {
+    auto [cull, R, i, l] = key;
+    if (cull != 2) continue;
+    std::printf("%4d %-12s %10.0f %9.3f %9.3f %9.3f %7.1fx\n", R, kInteriors[i], interiorTriangles[{i, l}],
+                ms(0, R, i, l), ms(1, R, i, l), autoMs, ms(0, R, i, l) / autoMs);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -256,6 +352,7 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   printRatios();
   printBuilding();
+  printInteriors();
   benchmark::Shutdown();
   return 0;
 }
