@@ -48,8 +48,12 @@ struct FaceCorners {
 /// The pixels whose centre lies in the window interval [lo, hi] widened by kSnapRoom each
 /// way, within [0, size - 1].
 std::pair<int, int> pixelSpan(double lo, double hi, int size) {
-  lo = std::max(lo, -2.0) - kSnapRoom, hi = std::min(hi, size + 2.0) + kSnapRoom;
-  return {std::max(int(std::ceil(lo - 0.5)), 0), std::min(int(std::floor(hi - 0.5)), size - 1)};
+  // Both clamped to [-1, size + 1] (size ≤ raster::kMaxSize), shifted so that truncation
+  // rounds down: floor(x) = int(x + kShift) - kShift, ceil(x) = -floor(-x).
+  constexpr int kShift = 1 << 16;
+  lo = std::max(lo, -1.0) - kSnapRoom, hi = std::min(hi, size + 1.0) + kSnapRoom;
+  const int first = kShift - int(kShift + 0.5 - lo), last = int(hi - 0.5 + kShift) - kShift;
+  return {std::max(first, 0), std::min(last, size - 1)};
 }
 
 /// Whether the box, wholly beyond the face's near plane (c.wMin > near), is hidden on face f:

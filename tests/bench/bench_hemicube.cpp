@@ -1,8 +1,10 @@
 // One hemicube evaluation on the Cornell box, at about 10 000 and 100 000 triangles and
 // R = 32 ... 512: our raster core, and the identical item buffers through OSMesa; then in a
 // generated building of k × k rooms (about 12 000 triangles each), from the surfaces of its
-// middle room. The last argument is the culling: 0 none (every element), 1 hidden (subtrees
-// below the base plane or hidden), 2 auto (the default: 1 where it pays, else 0).
+// middle room, and in the interiors of ../shared/scenes/bitterli (their faces split into
+// four up to twice), from element centroids. The last argument is the culling: 0 none
+// (every element), 1 hidden (subtrees below the base plane or hidden), 2 auto (the
+// default: 1 where it pays, else 0).
 // One iteration is one hemicube, so "Time" is the time per hemicube; wall-clock time is
 // measured because llvmpipe draws on worker threads (its default: one per core).
 //   build/bin/bench_hemicube [--benchmark_filter=...]
