@@ -124,8 +124,8 @@ void BM_HemicubeOsMesa(benchmark::State& state) {
     hemicube.prepare(c.mesh.centroid(e), c.mesh.normal(e), rad::hemicubeRotation(1, e, 0), {e});
     for (int f = 0; f < 5; ++f) {
       const rad::Hemicube::FaceDraw& draw = hemicube.faceDraw(f);
-      gl->draw(R, f == 0 ? R : R / 2, draw.clip.data(), draw.clip.size(), nullptr, draw.ids.size(),
-               draw.ids.data(), items);
+      gl->draw(R, f == 0 ? R : R / 2, draw.clip.data(), draw.clip.size(),
+               draw.indices.empty() ? nullptr : draw.indices.data(), draw.ids.size(), draw.ids.data(), items);
       benchmark::DoNotOptimize(items.data());
     }
   }
