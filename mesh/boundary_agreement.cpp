@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/progress.h"
 #include "mesh/spatial_hash.h"
 
 namespace rad::meshing {
@@ -102,29 +103,43 @@ class PieceMesher {
       : scene_(scene), table_(table), pieces_(pieces), maxEdge_(maxEdge),
         tolerance_(tolerance), fine_(fine), fineRatio_(fineRatio) {}
 
-  /// Triangles as point ids, per piece, and the agreement passes it took.
-  PieceTriangles run() {
+  /// Triangles as point ids, per piece, and the agreement passes it took; the stages' times
+  /// go to `stages`.
+  PieceTriangles run(StageTimes& stages) {
     PieceTriangles out;
+    auto start = StageTimes::Clock::now();
     cutBoundaries();
+    start = stages.add("boundary points", start);
     results_.resize(pieces_.size());
+    budget_.assign(pieces_.size(), 0);
     std::vector<bool> dirty(pieces_.size(), true);
     out.rounds = 1;
-    while (meshDirty(dirty, out.rounds == kMaxAgreementRounds)) ++out.rounds;
+    bool again = meshDirty(dirty, 1);
+    start = stages.add("elements", start);
+    while (again) again = meshDirty(dirty, ++out.rounds);
+    stages.add("boundary agreement", start);
     out.triangles = std::move(results_);
     out.unresolved = unresolved_;
     return out;
   }
 
  private:
-  /// Meshes the pieces marked dirty, marking those whose shared points changed (unless this
-  /// is the last round); false when none was dirty or this was the last round.
-  bool meshDirty(std::vector<bool>& dirty, bool last) {
+  /// Meshing round `round`: meshes the pieces marked dirty, marking those whose shared points
+  /// changed (unless this is the last round); false when none was dirty or this was the last
+  /// round.
+  bool meshDirty(std::vector<bool>& dirty, int round) {
     std::vector<int> todo;
     for (size_t p = 0; p < pieces_.size(); ++p)
       if (dirty[p]) todo.push_back(int(p));
     if (todo.empty()) return false;
     std::fill(dirty.begin(), dirty.end(), false);
-    for (int p : todo) meshPiece(p, last ? nullptr : &dirty);
+    const bool last = round == kMaxAgreementRounds;
+    StageProgress progress(round == 1 ? "elements: pieces" : "boundary agreement round " + std::to_string(round) + ": pieces",
+                           todo.size());
+    for (size_t k = 0; k < todo.size(); ++k) {
+      progress.update(k);
+      meshPiece(todo[k], last ? nullptr : &dirty);
+    }
     return !last;
   }
 
@@ -284,8 +299,11 @@ class PieceMesher {
     const Piece& piece = pieces_[p];
     const BoundaryIds b = boundary(p);
     const Polygon2 poly = boundaryPolygon(p, b);
-    const Triangulation2 tri =
-        meshPolygon(poly, maxEdge_, scene_.surfaces[size_t(piece.surface)].where, piece.meshFace);
+    // Its first boundary sets its budget: refinement passing points back and forth with a
+    // neighbour (a lamp's disk and the fitting through it) grows both boundaries, never it.
+    if (!budget_[size_t(p)]) budget_[size_t(p)] = refinementBudget(poly, maxEdge_);
+    const Triangulation2 tri = meshPolygon(poly, maxEdge_, scene_.surfaces[size_t(piece.surface)].where,
+                                           piece.meshFace, budget_[size_t(p)]);
     std::vector<int> global(tri.points.size());
     for (size_t i = 0; i < tri.points.size(); ++i) global[i] = pointId(p, poly, b, tri, i, dirty);
     auto& out = results_[p];
@@ -293,8 +311,22 @@ class PieceMesher {
     for (const auto& t : tri.triangles) out.push_back({global[t[0]], global[t[1]], global[t[2]]});
   }
 
+  /// The point of segment s (its ends included) within the tolerance of the point at t, or -1.
+  int pointNear(const Segment& s, double t) const {
+    const double reach = tolerance_ / glm::length(table_[s.b] - table_[s.a]);
+    if (t <= reach) return s.a;
+    if (t >= 1 - reach) return s.b;
+    const auto at = std::lower_bound(s.t.begin(), s.t.end(), t);
+    if (at != s.t.end() && *at - t <= reach) return table_.id(pointOn(s, *at));
+    if (at != s.t.begin() && t - *std::prev(at) <= reach) return table_.id(pointOn(s, *std::prev(at)));
+    return -1;
+  }
+
   /// Registers a point the mesher put on piece p's boundary or on one of its lines with the
-  /// shared segment, and marks the segment's other users for meshing again.
+  /// shared segment, and marks the segment's other users for meshing again; a point within the
+  /// tolerance of one the segment has is that one. (Refinement grading into a sliver's corner
+  /// halves a segment down to points one rounding step apart, which CGAL's mesher, given them
+  /// back, splits without end.)
   int addBoundaryPoint(int p, const Polygon2& poly, const std::vector<std::vector<int>>& edgeOf,
                        const glm::dvec2& q, std::vector<bool>& dirty) {
     const auto [c, k] = nearestEdge(poly, q);
@@ -302,6 +334,7 @@ class PieceMesher {
     Segment& s = segments_[edge.segment];
     glm::dvec3 x = pieces_[p].frame.lift(q), d = table_[s.b] - table_[s.a];
     double t = std::clamp(glm::dot(x - table_[s.a], d) / glm::dot(d, d), 1e-12, 1 - 1e-12);
+    if (const int near = pointNear(s, t); near >= 0) return near;
     s.t.insert(std::upper_bound(s.t.begin(), s.t.end(), t), t);
     for (int user : s.users)
       if (user != p) dirty[user] = true;
@@ -318,6 +351,7 @@ class PieceMesher {
   std::map<std::pair<int, int>, int> segmentIndex_;
   std::vector<std::vector<std::vector<ChainEdge>>> chains_;
   std::vector<std::vector<std::array<int, 3>>> results_;
+  std::vector<size_t> budget_;  ///< per piece: the vertices its refinement may make
   int unresolved_ = 0;
 };
 
@@ -325,10 +359,10 @@ class PieceMesher {
 
 PieceTriangles meshPieces(const Scene& scene, const MeshSettings& settings, PointTable& table,
                           const std::vector<Piece>& pieces,
-                          const std::set<std::pair<int, int>>& fine) {
+                          const std::set<std::pair<int, int>>& fine, StageTimes& stages) {
   PieceMesher mesher(scene, table, pieces, settings.maxElementEdge,
                      kOnEdgeTolerance * scene.diagonal(), fine, settings.contactGrading);
-  return mesher.run();
+  return mesher.run(stages);
 }
 
 }  // namespace rad::meshing

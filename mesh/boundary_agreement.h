@@ -8,6 +8,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/planar_pieces.h"
+#include "mesh/stage_times.h"
 
 namespace rad::meshing {
 
@@ -24,9 +25,11 @@ struct PieceTriangles {
 /// same points on it. Edges in `fine` (point id pairs, lower first: contact lines across a
 /// piece) are split settings.contactGrading times finer. Refinement may still split a
 /// boundary part (encroachment); such points are added to the shared part and its other
-/// users are meshed again until all agree. New points go into `table`.
+/// users are meshed again until all agree. New points go into `table`. Adds the time spent
+/// cutting the boundaries ("boundary points"), meshing every piece once ("elements") and
+/// meshing again until all agree ("boundary agreement") to `stages`.
 PieceTriangles meshPieces(const Scene& scene, const MeshSettings& settings, PointTable& table,
                           const std::vector<Piece>& pieces,
-                          const std::set<std::pair<int, int>>& fine);
+                          const std::set<std::pair<int, int>>& fine, StageTimes& stages);
 
 }  // namespace rad::meshing

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
+#include "mesh/progress.h"
 #include "mesh/solid_probe.h"
 #include "mesh/spatial_hash.h"
 
@@ -207,13 +208,22 @@ struct Context {
   }
 };
 
-/// The pieces whose boxes meet piece r's, each once.
+/// Whether pieces r and s are faces of one object of a mesh file: its folds meet along its
+/// own edges, where a contact line cuts nothing, and a model's parts that pass through each
+/// other (a tessellated knob through its rose) are its modeller's business; cutting them
+/// multiplied a staircase's brass fittings' elements twentyfold.
+bool sameObject(const Context& cx, size_t r, size_t s) {
+  const int surface = cx.original[r].surface;
+  return surface == cx.original[s].surface && cx.scene.surfaces[size_t(surface)].fromMeshFile;
+}
+
+/// The pieces whose boxes meet piece r's, each once, but those of its own object.
 std::vector<int> candidates(Context& cx, size_t r) {
   std::vector<int> out;
   cx.boxes.visit(r, [&](int s) {
     if (s == int(r) || cx.stamp[size_t(s)] == int(r)) return;
     cx.stamp[size_t(s)] = int(r);
-    if (boxesMeet(cx.box[r], cx.box[size_t(s)])) out.push_back(s);
+    if (!sameObject(cx, r, size_t(s)) && boxesMeet(cx.box[r], cx.box[size_t(s)])) out.push_back(s);
   });
   return out;
 }
@@ -410,13 +420,18 @@ void dropEmpty(std::vector<Piece>& pieces) {
 
 }  // namespace
 
-ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces) {
+ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces,
+                          StageTimes& stages) {
+  auto start = StageTimes::Clock::now();
   Context cx(scene, table, pieces);  // the uncut pieces, indexed by box
   ContactCuts out;
+  StageProgress progress("contact lines: pieces", pieces.size());
   for (size_t r = 0; r < pieces.size(); ++r) {
+    progress.update(r);
     // Find where other pieces touch or pierce piece r.
     const Lines found = contactLinesOf(cx, r);
     out.lines += int(found.lines.size());
+    start = stages.add("contact lines", start);
     // Lines along its own edges only, no solid side facing in: it stays whole.
     if (cutsNothing(cx, r, found.lines)) continue;
     // Cut it along them, leaving out what they enclose.
@@ -426,9 +441,11 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     // Take back what is kept, as point ids, and say what was left out.
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);
+    start = stages.add("contact cuts", start);
   }
   // Drop the pieces left out entirely.
   dropEmpty(pieces);
+  stages.add("contact cuts", start);
   return out;
 }
 

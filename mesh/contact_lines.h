@@ -7,6 +7,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/planar_pieces.h"
+#include "mesh/stage_times.h"
 
 namespace rad::meshing {
 
@@ -22,7 +23,9 @@ struct ContactCuts {
 /// on a floor, a wall meeting a floor, a box pushed into a wall) and leaves out what they
 /// enclose (cutAlongContacts); pieces left out entirely are dropped. New points within the
 /// contact tolerance of an existing one are merged with it, so that both pieces at a contact
-/// share their points.
-ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces);
+/// share their points. Adds the time spent finding the lines ("contact lines") and cutting
+/// along them ("contact cuts") to `stages`.
+ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Piece>& pieces,
+                          StageTimes& stages);
 
 }  // namespace rad::meshing

@@ -11,6 +11,7 @@
 
 #include "mesh/geometry.h"
 #include "mesh/patch_growth.h"
+#include "mesh/progress.h"
 
 namespace rad::meshing {
 namespace {
@@ -144,8 +145,11 @@ std::vector<std::vector<std::vector<int>>> patchesOfPieces(const PointTable& tab
                                                            const PieceTriangles& elements,
                                                            double maxPatchEdge) {
   std::vector<std::vector<std::vector<int>>> patches(pieces.size());
-  for (size_t p = 0; p < pieces.size(); ++p)
+  StageProgress progress("patches: pieces", pieces.size());
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    progress.update(p);
     patches[p] = growPatches(table, pieces[p].frame, elements.triangles[p], maxPatchEdge);
+  }
   return patches;
 }
 
@@ -166,19 +170,26 @@ void setVertexNormals(PatchMesh& out) {
 void assemblePatchMesh(const Scene& scene, const PointTable& table,
                        const std::vector<Piece>& pieces, const PieceTriangles& elements,
                        double maxPatchEdge, PatchMesh& out) {
+  auto start = StageTimes::Clock::now();
   const auto patchesOfPiece = patchesOfPieces(table, pieces, elements, maxPatchEdge);
+  start = out.stats.stages.add("patches", start);
   std::vector<std::vector<int>> piecesOfSurface(scene.surfaces.size());
   for (size_t p = 0; p < pieces.size(); ++p) piecesOfSurface[size_t(pieces[p].surface)].push_back(int(p));
   Assembler assembler(scene, table, pieces, elements, patchesOfPiece, out);
   // OpenMesh would print "complex edge" for each face it refuses; the count below says it once.
   omerr().disable();
-  for (size_t s = 0; s < scene.surfaces.size(); ++s) assembler.addSurface(int(s), piecesOfSurface[s]);
+  StageProgress progress("assembly: surfaces", scene.surfaces.size());
+  for (size_t s = 0; s < scene.surfaces.size(); ++s) {
+    progress.update(s);
+    assembler.addSurface(int(s), piecesOfSurface[s]);
+  }
   omerr().enable();
   if (assembler.nonManifold())
     out.warnings.push_back("meshing: " + std::to_string(assembler.nonManifold()) +
                            " elements on edges shared by more than two faces (or faces of opposite "
                            "facing) got their own vertices; light is not interpolated across them");
   setVertexNormals(out);
+  out.stats.stages.add("assembly", start);
 }
 
 }  // namespace rad::meshing

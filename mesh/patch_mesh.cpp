@@ -66,16 +66,19 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
   RAD_CHECK(settings.maxPatchEdge > 0);
   PatchMesh out;
   out.surfaces.resize(scene.surfaces.size());
+  StageTimes& stages = out.stats.stages;
   meshing::PointTable table;
   // Surfaces ▸ planar pieces, cut where other surfaces touch them.
+  const auto start = StageTimes::Clock::now();
   std::vector<meshing::Piece> pieces = meshing::planarPieces(scene, table, out.warnings);
+  stages.add("planar pieces", start);
   meshing::ContactCuts contacts;
-  if (settings.cutContacts) contacts = meshing::cutAtContacts(scene, table, pieces);
+  if (settings.cutContacts) contacts = meshing::cutAtContacts(scene, table, pieces, stages);
   out.cutAway = std::move(contacts.cutAway);
   out.contactLines = contacts.lines;
   // Pieces ▸ elements, neighbours agreeing on the points of shared boundaries.
   const meshing::PieceTriangles elements =
-      meshing::meshPieces(scene, settings, table, pieces, contacts.across);
+      meshing::meshPieces(scene, settings, table, pieces, contacts.across, stages);
   out.stats.rounds = elements.rounds;
   if (elements.unresolved)
     out.warnings.push_back("meshing: " + std::to_string(elements.unresolved) +

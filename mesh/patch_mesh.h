@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/scene.h"
+#include "mesh/stage_times.h"
 
 namespace rad {
 
@@ -66,6 +67,7 @@ struct CutAway {
 struct MeshStats {
   double minAngleDeg = 180, maxEdge = 0, maxPatchDiameter = 0;
   int rounds = 0;  ///< boundary agreement rounds between neighbouring surfaces
+  StageTimes stages;  ///< the wall time of each stage of buildPatchMesh
 };
 
 /// Elements are the faces of an OpenMesh triangle mesh. Vertices are shared within one side

@@ -16,6 +16,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "mesh/error.h"
@@ -29,6 +30,18 @@ namespace {
 constexpr double kLargeFaceEdges = 3;
 constexpr double kLargeFaceMinAngleDeg = 30;
 constexpr double kLargeFaceMinSegment = 0.125;
+/// Delaunay refinement that would make more vertices than this many times an equilateral
+/// mesh's of the polygon (its area at the element edge, and its boundary points) is meeting a
+/// sliver (a thin face of a downloaded model, 5 m by 2 mm, cut by a contact line): refined
+/// for shape it would fill with ~(length / width)² tiny elements and pass boundary points on
+/// to its neighbours, who refine in turn. Such a polygon is meshed as it is (meshAsIs).
+constexpr double kRefinementBudget = 16;
+/// ...plus this many vertices, so that a small polygon's few are never a sliver's.
+constexpr size_t kRefinementSlack = 64;
+/// Refinement steps (points tried, accepted or not) allowed per vertex of the budget: near
+/// nearly coincident constraints of a downloaded model, CGAL's mesher can try and reject
+/// points without end (a staircase's piece looped for minutes, inserting none).
+constexpr size_t kRefinementStepsPerVertex = 16;
 
 struct PointId {
   int id = -1;
@@ -308,7 +321,71 @@ bool isLargeWellShaped(const Polygon2& polygon, double maxEdge) {
   return longest >= kLargeFaceEdges * maxEdge && shortestSegment(polygon.rings[0]) >= kLargeFaceMinSegment * maxEdge;
 }
 
+/// Delaunay refinement of the marked domain of `cdt` (one seed per part): elements no longer
+/// than maxEdge, angles of at least kMeshMinAngleDeg where the input allows. False, the
+/// refinement left unfinished, once the triangulation has more than maxVertices vertices or
+/// the steps are more than kRefinementStepsPerVertex times that.
+bool refineWithin(CDT& cdt, const std::vector<K::Point_2>& seeds, double maxEdge, size_t maxVertices) {
+  // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
+  CGAL::Delaunay_mesher_2<CDT, Criteria> mesher(cdt, Criteria(0.125, maxEdge));
+  mesher.set_seeds(seeds.begin(), seeds.end(), true);
+  mesher.init();
+  for (size_t steps = 1; mesher.try_one_step_refine_mesh(); ++steps)
+    if (cdt.number_of_vertices() > maxVertices || steps > kRefinementStepsPerVertex * maxVertices) return false;
+  return true;
+}
+
+/// The lattice points (latticeInside) of every triangle of the domain longer than maxEdge.
+std::vector<glm::dvec2> latticePoints(const CDT& cdt, const Polygon2& polygon, double maxEdge) {
+  std::vector<glm::dvec2> points;
+  for (auto f : cdt.finite_face_handles()) {
+    if (!f->is_in_domain()) continue;
+    std::vector<glm::dvec2> t;
+    for (int i = 0; i < 3; ++i) t.emplace_back(f->vertex(i)->point().x(), f->vertex(i)->point().y());
+    const double longest = std::max({glm::length(t[1] - t[0]), glm::length(t[2] - t[1]), glm::length(t[0] - t[2])});
+    const int m = int(std::ceil(longest / maxEdge));
+    for (const glm::dvec2& q : latticeInside(polygon, t, m, longest)) points.push_back(q);
+  }
+  return points;
+}
+
+/// Whether the polygon's outline fits within one element: no two of its points farther apart
+/// than maxEdge. A mesh file's small face, cut where another object touches it, is then
+/// meshed as it is; refined for shape, its neighbours' points and its own passed back and
+/// forth until a staircase's brass fittings had twenty elements per face.
+bool withinElement(const Polygon2& polygon, double maxEdge) {
+  glm::dvec2 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const glm::dvec2& q : polygon.rings[0]) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  if (glm::length(hi - lo) <= maxEdge) return true;  // the box's diagonal bounds the diameter
+  const std::vector<glm::dvec2>& ring = polygon.rings[0];
+  for (size_t i = 0; i < ring.size(); ++i)
+    for (size_t j = i + 1; j < ring.size(); ++j)
+      if (glm::length(ring[j] - ring[i]) > maxEdge) return false;
+  return true;
+}
+
+/// The polygon's constrained triangulation (rings and lines inserted as `ringEdges`), each
+/// triangle longer than maxEdge given the inside points of its congruent split, no point
+/// added on the boundary: a sliver's elements are as thin as it is, but no more numerous.
+Triangulation2 meshAsIs(CDT& cdt, const RingEdges& ringEdges, const Polygon2& polygon, double maxEdge) {
+  markInside(cdt, ringEdges);
+  for (const glm::dvec2& q : latticePoints(cdt, polygon, maxEdge)) cdt.insert(K::Point_2(q.x, q.y));
+  markInside(cdt, ringEdges);
+  return extract(cdt);
+}
+
 }  // namespace
+
+size_t refinementBudget(const Polygon2& polygon, double maxEdge) {
+  double area = 0, points = 0;
+  for (const auto& ring : polygon.rings) {
+    points += double(ring.size());
+    for (size_t k = 0; k < ring.size(); ++k) area += ring[k].x * ring[(k + 1) % ring.size()].y - ring[(k + 1) % ring.size()].x * ring[k].y;
+  }
+  for (const auto& line : polygon.lines) points += double(line.size());
+  const double equilateral = std::sqrt(3.0) / 4 * maxEdge * maxEdge;
+  return size_t(kRefinementBudget * (std::abs(area) / 2 / equilateral + points)) + kRefinementSlack;
+}
 
 Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& where) {
   CDT cdt;
@@ -317,15 +394,19 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 }
 
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
-                           bool meshFace) {
+                           bool meshFace, size_t maxVertices) {
   if (isGoodTriangle(polygon, maxEdge, meshFace)) return loneTriangle(polygon);
   if (meshFace && isTriangleFace(polygon) && !isLargeWellShaped(polygon, maxEdge))
     return meshTriangleFace(polygon, maxEdge, where);
   CDT cdt;
-  std::vector<K::Point_2> seeds = markInside(cdt, insertFaceRings(cdt, polygon, where, meshFace));
-  // Shape bound 0.125 is CGAL's default, the 20.7 degree guarantee of Delaunay refinement.
-  CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(0.125, maxEdge), true);
-  return extract(cdt);
+  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where, meshFace);
+  if (meshFace && withinElement(polygon, maxEdge)) return meshAsIs(cdt, ringEdges, polygon, maxEdge);
+  const std::vector<K::Point_2> seeds = markInside(cdt, ringEdges);
+  if (refineWithin(cdt, seeds, maxEdge, maxVertices ? maxVertices : refinementBudget(polygon, maxEdge)))
+    return extract(cdt);
+  // A sliver: refined for shape it would fill with tiny elements. Meshed as it is instead.
+  cdt.clear();
+  return meshAsIs(cdt, insertFaceRings(cdt, polygon, where, meshFace), polygon, maxEdge);
 }
 
 }  // namespace rad

@@ -2,6 +2,7 @@
 // Triangulation and quality meshing of planar polygons with holes, in the polygon's own
 // 2D frame. The CGAL implementation stays behind this header.
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,16 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 /// the added points are flagged onBoundary. A lone triangle of a mesh file (meshFace) within
 /// maxEdge is kept as it is, whatever its angles; a larger one is split by its congruent
 /// lattice, unless it is large and well shaped (a wall drawn as two triangles), which is
-/// meshed like a polygon.
+/// meshed like a polygon. A polygon whose refinement would make more than `maxVertices`
+/// vertices (0: refinementBudget of the polygon) is a sliver, and is meshed as it is: its
+/// constrained triangulation, a triangle longer than maxEdge split by the points of its
+/// congruent lattice, no point added on its boundary.
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
-                           bool meshFace = false);
+                           bool meshFace = false, size_t maxVertices = 0);
+
+/// The vertices Delaunay refinement may make of the polygon before it counts as a sliver: a
+/// multiple of those of an equilateral mesh of its area at maxEdge and of its boundary
+/// points and lines.
+size_t refinementBudget(const Polygon2& polygon, double maxEdge);
 
 }  // namespace rad

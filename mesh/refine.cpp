@@ -114,16 +114,14 @@ class Bisector {
     for (auto v : m_.vertices()) at_.emplace(m_.point(v), v.idx());
   }
 
-  /// Bisects f across its longest edge, after its LEPP neighbours as needed.
-  void bisect(Mesh::FaceHandle f) {
+  /// Bisects f across its longest edge, after its LEPP neighbours as needed; false, f left
+  /// as it is, when an edge on the way is too short to halve.
+  bool bisect(Mesh::FaceHandle f) {
     for (;;) {
       auto e = longest(m_, f);
       auto g = across(f, e);
-      if (!g.is_valid() || longest(m_, g) == e) {
-        split(e);
-        return;
-      }
-      bisect(g);  // f's neighbour across e is now one half of g: look again
+      if (!g.is_valid() || longest(m_, g) == e) return split(e);
+      if (!bisect(g)) return false;  // f's neighbour across e is now one half of g: look again
     }
   }
 
@@ -158,7 +156,7 @@ class Bisector {
         split(e);
         return;
       }
-      bisect(shorter);
+      if (!bisect(shorter)) return;
     }
   }
 
@@ -204,11 +202,14 @@ class Bisector {
     return n.norm() > 0 ? n.normalized() : n;
   }
 
-  /// Splits edge e at its midpoint (and the same edge of other surfaces: splitTwins).
-  void split(Mesh::EdgeHandle e) {
+  /// Splits edge e at its midpoint (and the same edge of other surfaces: splitTwins); false,
+  /// nothing split, when the midpoint rounds to an end (a sliver's corners a rounding step
+  /// apart: halved, the same point came back without end).
+  bool split(Mesh::EdgeHandle e) {
     auto h = m_.halfedge_handle(e, 0);
     const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
     const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
+    if (mid == m_.point(a) || mid == m_.point(b)) return false;
     const auto halved = halvedAreas(h);
     const size_t facesBefore = m_.n_faces();
     auto v = m_.add_vertex(mid);
@@ -221,6 +222,7 @@ class Bisector {
     m_.set_normal(v, edgeNormal(a, b));
     at_.emplace(mid, v.idx());
     splitTwins(a, b);
+    return true;
   }
 
   PatchMesh& pm_;

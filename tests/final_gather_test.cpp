@@ -156,7 +156,7 @@ TEST(FinalGatherTest, ElementsShowTheMeanOfTheirVertices) {
 }
 
 TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
-  Scene scene = loadSceneToSolve(test::kScenes + "stress/slivers.json");
+  Scene scene = loadSceneToSolve(test::kData + "fine_floor.json");
   std::vector<std::string> warnings;
   const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed =

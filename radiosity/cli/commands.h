@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mesh/scene.h"
+#include "mesh/stage_times.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
@@ -53,6 +54,12 @@ Command addReferenceCommand(CLI::App& app);
 /// The scene meshed by the flags over its solver block (radiosity/solve.h), the loader's
 /// warnings printed first and the mesher's as they arise.
 MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmitter);
+
+/// The scene file at `path` read by `load` (loadScene, loadSceneToSolve) and meshed as by
+/// meshWithFlags, the time of each stage added to `stages`: "loading", the mesher's own
+/// (MeshStats::stages) and "direct light and refinement" (the rest of meshScene).
+MeshedScene loadAndMesh(const std::string& path, Scene (*load)(const std::string&), const SolverBlock& flags,
+                        bool requireEmitter, StageTimes& stages);
 
 /// The true error of what a viewer would show of the solve's current solution: as the
 /// progressive solver has it, or after the final gather (`gather`, if the settings have one).

@@ -1,5 +1,4 @@
 // radiosity info SCENE: surfaces, areas, materials, emitters, patch and element counts.
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -145,12 +144,18 @@ void printMeshing(const MeshedScene& meshed, double seconds) {
   std::printf("time        %.3f s to mesh (%d boundary agreement rounds)\n", seconds, mesh.stats.rounds);
 }
 
-/// The scene meshed by the flags; `seconds`: the time meshing took.
-MeshedScene timedMesh(Scene loaded, const SolverBlock& flags, double& seconds) {
-  auto start = std::chrono::steady_clock::now();
-  MeshedScene meshed = meshWithFlags(std::move(loaded), flags, false);
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return meshed;
+/// The seconds of every stage but loading the scene.
+double secondsToMesh(const StageTimes& stages) {
+  double seconds = 0;
+  for (const StageTime& s : stages.list()) seconds += s.name == "loading" ? 0 : s.seconds;
+  return seconds;
+}
+
+/// The time of each stage, then their total.
+void printStages(const StageTimes& stages) {
+  std::printf("\nstages      seconds\n");
+  for (const StageTime& s : stages.list()) std::printf("  %-28s %9.3f\n", s.name.c_str(), s.seconds);
+  std::printf("  %-28s %9.3f\n", "total", stages.total());
 }
 
 /// Flushes standard output; a failed write is an error.
@@ -160,12 +165,13 @@ void flushOutput() {
 }
 
 void runInfo(const InfoOptions& o) {
-  double seconds = 0;
-  const MeshedScene meshed = timedMesh(loadScene(o.scene), o.flags, seconds);
+  StageTimes stages;
+  const MeshedScene meshed = loadAndMesh(o.scene, loadScene, o.flags, false, stages);
   printScene(meshed.scene, meshed.settings);
   printSurfaces(meshed.scene, meshed.mesh);
   printContacts(meshed.scene, meshed.mesh);
-  printMeshing(meshed, seconds);
+  printMeshing(meshed, secondsToMesh(stages));
+  printStages(stages);
   flushOutput();
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/error.h"
+#include "mesh/progress.h"
 #include "radiosity/cli/commands.h"
 
 namespace rad::cli {
@@ -124,6 +125,18 @@ MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmi
   return meshScene(std::move(scene), settings, {requireEmitter, [](const std::string& w) { printWarnings({withFlags(w)}); }});
 }
 
+MeshedScene loadAndMesh(const std::string& path, Scene (*load)(const std::string&), const SolverBlock& flags,
+                        bool requireEmitter, StageTimes& stages) {
+  auto start = StageTimes::Clock::now();
+  Scene scene = load(path);
+  start = stages.add("loading", start);
+  MeshedScene meshed = meshWithFlags(std::move(scene), flags, requireEmitter);
+  const StageTimes& meshing = meshed.mesh.stats.stages;
+  stages.add(meshing);
+  stages.add("direct light and refinement", std::max(0.0, StageTimes::since(start) - meshing.total()));
+  return meshed;
+}
+
 ErrorSummary trueErrorNow(const RadiositySolve& solve, const MeshedScene& scene, const TrueError& truth,
                           bool gather) {
   return truth.measure(shownAtVertices(scene, solve.bake(gather)));
@@ -162,6 +175,11 @@ void printWarnings(const std::vector<std::string>& warnings) {
 }  // namespace rad::cli
 
 namespace {
+
+/// A long stage's progress line on stderr, as every command says it.
+void sayProgress(const std::string& line) {
+  std::cerr << "radiosity: " << line << "\n";
+}
 
 /// An error on stderr, as every command says it.
 void printError(const std::string& message) {
@@ -220,5 +238,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<rad::cli::Command> commands = addCommands(app);
   if (const std::optional<int> code = parseOrExit(app, argc, argv)) return *code;
+  const rad::ProgressScope progress(sayProgress);
   return runReportingErrors(commands);
 }

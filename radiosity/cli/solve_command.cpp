@@ -163,17 +163,24 @@ void runSolve(const SolveOptions& o) {
   checkOutputPath(o.output);
   if (!o.report.empty()) checkOutputPath(o.report);
   std::vector<ReferencePoint> referencePoints = readReference(o.reference);
-  const MeshedScene scene = meshWithFlags(loadSceneToSolve(o.scene), o.flags, true);
+  StageTimes stages;
+  const MeshedScene scene = loadAndMesh(o.scene, loadSceneToSolve, o.flags, true, stages);
+  auto start = StageTimes::Clock::now();
   const Measures measures = measuresFor(o, scene, std::move(referencePoints));
+  if (!measures.fixedPoint.empty()) start = stages.add("fixed point", start);
   RadiositySolve solve(scene);
   Json history = shoot(solve, scene, measures);
+  start = stages.add("shooting", start);
   const Solution solution = solve.bake();
+  start = stages.add(solution.gathered ? "final gather" : "baking", start);
   // Outputs: each through a temporary file; the report last, so a report means a result.
   writeSolution(o.output, scene, solution);
   printOutcome(solve, solution, o.output);
   Json report = solveReport(scene, solve, solution);
   addMeasures(report, o, measures, scene, solve, solution);
   report["history"] = history;
+  stages.add("writing", start);
+  report["stages"] = stagesTable(stages);
   if (!o.report.empty())
     writeFileAtomically(o.report, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
 }

@@ -206,6 +206,12 @@ Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown) {
   return table;
 }
 
+Json stagesTable(const StageTimes& stages) {
+  Json table = Json::array();
+  for (const StageTime& s : stages.list()) table.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  return table;
+}
+
 Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const Solution& solution) {
   const ProgressiveSolver& solver = solve.solver();
   Json report;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mesh/stage_times.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
 
@@ -19,6 +20,9 @@ const char* stopName(ProgressiveSolver::Stop s);
 Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string& file);
 /// Every reference point with what is shown there.
 Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown);
+
+/// The time of each stage of the run, as [{"name", "seconds"}, ...].
+Json stagesTable(const StageTimes& stages);
 
 /// Everything the report says of a finished solve, but the history and the error.
 Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const Solution& solution);
