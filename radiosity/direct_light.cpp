@@ -161,9 +161,10 @@ void DirectLight::Rays::build(const PatchMesh& mesh) {
   if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
 }
 
-DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter,
+DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter, int raysPerPoint,
                          int workers)
-    : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize), workers_(workerCount(workers)) {
+    : rays_impl_(std::make_unique<Rays>()), sceneSize_(sceneSize), raysPerPoint_(raysPerPoint),
+      workers_(workerCount(workers)) {
   // The lights: every emitting patch, with samples by its share of its surface side.
   std::vector<double> sideArea;
   const std::vector<int> emitters = emittingPatches(mesh, sideArea);
@@ -260,38 +261,83 @@ std::vector<char> DirectLight::samplesVisible(const Probe& probe, const glm::dve
   return visible;
 }
 
-void DirectLight::addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
-                             long& raysCast) const {
-  const glm::dvec3& n = probe.normal;
-  const LightPolygon& light = lights_[t];
-  if (glm::dot(light.normal, p - light.outline[0]) <= 0) return;  // behind the emitter
-  const double F = pointPolygonFormFactor(p, n, light.outline);
-  if (!(F > 0)) return;
-  // The visible share of the light: each sample weighted by its own differential factor,
-  // cosθ·cosθ'/r² (samples stand for equal areas), so that near a light its close parts
-  // count more; the exact unoccluded factor F carries the magnitude.
+namespace {
+
+/// The stride through a light's samples above a point's horizon (`above` of them) for the
+/// light's `share` of the point's light: a power of two leaving at least raysPerPoint·share
+/// samples, and never fewer than kMinRaysPerLight.
+size_t sampleStride(size_t above, double share, int raysPerPoint) {
+  const double wanted = std::max(double(kMinRaysPerLight), raysPerPoint * share);
+  size_t stride = 1;
+  while (double(above) / double(2 * stride) >= wanted) stride *= 2;
+  return stride;
+}
+
+}  // namespace
+
+/// One light as a point sees it: its samples above the point's horizon, each weighted by its
+/// own differential factor cosθ·cosθ'/r² (samples stand for equal areas, so that near a light
+/// its close parts count more), and which are visible. Every stride-th sample is tested by a
+/// ray; consecutive samples are neighbouring strata (patchSamples bisects by area), so each
+/// tested one stands for the stride of them from it.
+struct DirectLight::SeenLight {
   std::vector<int> above;
   std::vector<double> weight;
-  double all = 0;
+  std::vector<char> visible;  ///< per sample above, tested or taken from the tested one before it
+  double all = 0;             ///< the weights' sum
+  double F = 0;               ///< the light's exact unoccluded factor
+  size_t stride = 0;          ///< 0: nothing tested yet
+
+  /// The visible share of the light's weight.
+  double seen() const {
+    double sum = 0;
+    for (size_t k = 0; k < above.size(); ++k) sum += visible[k] ? weight[k] : 0.0;
+    return all > 0 ? sum / all : 0.0;
+  }
+  /// Whether some tested samples are visible and some not (the point is in its penumbra).
+  bool partial() const {
+    const auto first = visible.begin(), last = visible.end();
+    return std::find(first, last, 1) != last && std::find(first, last, 0) != last;
+  }
+};
+
+double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
+  const LightPolygon& light = lights_[t];
+  if (glm::dot(light.normal, p - light.outline[0]) <= 0) return 0;  // behind the emitter
+  const double F = pointPolygonFormFactor(p, n, light.outline);
+  return F > 0 ? F : 0;
+}
+
+DirectLight::SeenLight DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
+  SeenLight out;
+  const LightPolygon& light = lights_[t];
+  out.F = unoccludedFactor(p, n, t);
+  if (!(out.F > 0)) return out;
   for (int j = light.first; j < light.first + light.count; ++j) {
     const glm::dvec3 d = onLight_[size_t(j)] - p;
     const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
     if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
-    above.push_back(j);
-    weight.push_back(cosHere * cosThere / (r2 * r2));
-    all += weight.back();
+    out.above.push_back(j);
+    out.weight.push_back(cosHere * cosThere / (r2 * r2));
+    out.all += out.weight.back();
   }
-  if (above.empty() || !(all > 0)) return;
-  const std::vector<char> visible = samplesVisible(probe, p, above, raysCast);
-  double seen = 0;
-  for (size_t k = 0; k < above.size(); ++k) {
-    if (!visible[k]) continue;
-    seen += weight[k];
-    out.visible[size_t(above[k] / 64)] |= uint64_t(1) << (above[k] % 64);
-  }
-  const glm::dvec3 full = probe.rho * light.emission * F;
-  out.radiosity += full * (seen / all);
-  out.weight[t] = float(luminance(full) / double(above.size()));  // the mean sample's share
+  if (!(out.all > 0)) out.above.clear(), out.weight.clear();
+  out.visible.assign(out.above.size(), 0);
+  return out;
+}
+
+void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light,
+                       long& raysCast) const {
+  if (light.stride && light.stride <= stride) return;
+  std::vector<int> samples;
+  std::vector<size_t> at;
+  for (size_t k = 0; k < light.above.size(); k += stride)
+    if (!light.stride || k % light.stride) samples.push_back(light.above[k]), at.push_back(k);
+  const std::vector<char> visible = samplesVisible(probe, p, samples, raysCast);
+  for (size_t i = 0; i < at.size(); ++i) light.visible[at[i]] = visible[i];
+  light.stride = stride;
+  for (size_t k = 0; k < light.above.size(); ++k)
+    if (k % stride) light.visible[k] = light.visible[k - k % stride];
 }
 
 VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
@@ -300,7 +346,38 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   out.weight.assign(lights_.size(), 0.0f);
   if (probe.rho == glm::dvec3(0.0)) return out;  // black: nothing to show
   const glm::dvec3 p = offSurface(probe, sceneSize_);
-  for (size_t t = 0; t < lights_.size(); ++t) addLightAt(probe, p, t, out, raysCast);
+  // Each light's samples above the horizon and its unoccluded light first: the lights share
+  // the point's rays by what each brings (a probe given its visibility casts none).
+  std::vector<SeenLight> seen(lights_.size());
+  std::vector<double> lum(lights_.size());
+  double open = 0;
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    seen[t] = samplesAbove(p, probe.normal, t);
+    if (!seen[t].above.empty()) open += lum[t] = luminance(lights_[t].emission) * seen[t].F;
+  }
+  if (!(open > 0)) return out;
+  auto stride = [&](size_t t, double total) {
+    return probe.visible ? 1 : sampleStride(seen[t].above.size(), lum[t] / total, raysPerPoint_);
+  };
+  double shown = 0;
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    if (seen[t].above.empty()) continue;
+    test(probe, p, stride(t, open), seen[t], raysCast);
+    shown += lum[t] * seen[t].seen();
+  }
+  // In a shadow the light that arrives is not what the open sky would bring: a light in
+  // whose penumbra the point lies is tested again for its share of what is shown.
+  for (size_t t = 0; t < lights_.size() && shown > 0; ++t)
+    if (seen[t].stride > 1 && seen[t].partial()) test(probe, p, stride(t, shown), seen[t], raysCast);
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    const SeenLight& light = seen[t];
+    if (light.above.empty()) continue;
+    for (size_t k = 0; k < light.above.size(); ++k)
+      if (light.visible[k]) out.visible[size_t(light.above[k] / 64)] |= uint64_t(1) << (light.above[k] % 64);
+    const glm::dvec3 full = probe.rho * lights_[t].emission * light.F;
+    out.radiosity += full * light.seen();
+    out.weight[t] = float(luminance(full) / double(light.above.size()));  // the mean sample's share
+  }
   return out;
 }
 

@@ -20,6 +20,12 @@ constexpr int kDefaultLightSamples = 512;
 /// At most this many samples over all emitting surface sides (rays per vertex): with many
 /// glowing surfaces each gets fewer.
 constexpr int kMaxLightSamples = 4096;
+/// Rays per point that its lights share by what each brings (its unoccluded factor times its
+/// emission): each light is seen through every stride-th of its samples, the stride the
+/// largest power of two that leaves kRaysPerPoint times its share of them, and at least
+/// kMinRaysPerLight. A lone light (the Cornell box) casts every sample.
+constexpr int kRaysPerPoint = kDefaultLightSamples;
+constexpr int kMinRaysPerLight = 16;
 /// Above this many emitting patches, direct light by rays costs more than it brings (a scene
 /// where most surfaces glow has no sharp shadows): the hemicubes' values are shown instead.
 constexpr int kMaxRayEmitterPatches = 256;
@@ -46,9 +52,10 @@ struct VertexLight {
 /// move geometry): update() computes the vertices added since.
 class DirectLight {
  public:
-  /// workers: threads casting rays (0: one per hardware thread).
+  /// raysPerPoint: what the lights share at a point (kRaysPerPoint; as many as the samples:
+  /// every sample of every light). workers: threads casting rays (0: one per hardware thread).
   DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPerEmitter = kDefaultLightSamples,
-              int workers = 0);
+              int raysPerPoint = kRaysPerPoint, int workers = 0);
   ~DirectLight();
   DirectLight(const DirectLight&) = delete;
   DirectLight& operator=(const DirectLight&) = delete;
@@ -87,9 +94,14 @@ class DirectLight {
   /// Whether each of the samples is visible from `origin` (given by the probe, or by rays).
   std::vector<char> samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
                                    long& raysCast) const;
-  /// Adds light t's share seen from p (the probe's ray origin) to `out`.
-  void addLightAt(const Probe& probe, const glm::dvec3& p, size_t t, VertexLight& out,
-                  long& raysCast) const;
+  struct SeenLight;
+  /// Light t's exact unoccluded factor from p with normal n (0 behind it).
+  double unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
+  /// Light t seen from p with normal n: its samples above the horizon, none tested yet.
+  SeenLight samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
+  /// Tests every stride-th of the light's samples from p (those not tested yet), unless it
+  /// was tested as finely already.
+  void test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light, long& raysCast) const;
   /// The direct light at one probe, counting the rays it casts.
   VertexLight compute(const Probe& probe, long& raysCast) const;
 
@@ -100,7 +112,7 @@ class DirectLight {
   std::vector<glm::dvec3> points_;   // the same, moved off their emitter: where rays end
   std::vector<VertexLight> vertices_;
   double sceneSize_ = 1;
-  int samples_ = 0, workers_ = 1;
+  int samples_ = 0, raysPerPoint_ = kRaysPerPoint, workers_ = 1;
   bool enabled_ = false;
   long rays_ = 0;
 };

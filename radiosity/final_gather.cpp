@@ -252,6 +252,24 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
   return out;
 }
 
+double gatherWork(const PatchMesh& mesh, const PatchMesh* base, double sceneSize, const GatherOptions& options) {
+  const GatherPoints points = gatherPoints(mesh, base, vertexReflectance(mesh));
+  std::vector<int> gathering;
+  for (size_t v = 0; v < points.at.size(); ++v)
+    if (points.at[v]) gathering.push_back(int(v));
+  if (gathering.empty()) return 0;
+  const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(base ? *base : mesh);
+  Hemicube cube(geometry, options.resolution, sceneSize);
+  FormFactors f;
+  const size_t probes = std::min(gathering.size(), size_t(kGatherWorkProbes));
+  double sorted = 0;
+  for (size_t k = 0; k < probes; ++k) {
+    factorsAt(mesh, sceneSize, options.seed, gathering[(2 * k + 1) * gathering.size() / (2 * probes)], cube, f);
+    sorted += double(cube.sorted());
+  }
+  return double(gathering.size()) * sorted / double(probes);
+}
+
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* statsOut) {

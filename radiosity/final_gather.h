@@ -33,13 +33,15 @@ namespace rad {
 /// true error is 2.15 % at 16, 2.07 % at 32 and at 64, while the time goes 0.38 / 0.49 / 0.6 s
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
-/// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs:
-/// every vertex's hemicube draws every element, about kGatherSecondsPerPair each on one core
-/// of this machine class, so 5e8 is some eight seconds on two.
+/// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
+/// (gatherWork), about kGatherSecondsPerPair each on one core of this machine class, so 5e8
+/// is some eight seconds on two.
 constexpr double kMaxGatherWork = 5e8;
 /// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
 /// hemicubes over 7 690 elements in 0.52 s on two).
 constexpr double kGatherSecondsPerPair = 3e-8;
+/// Gathering vertices whose hemicubes gatherWork renders to estimate the rest's.
+constexpr int kGatherWorkProbes = 16;
 
 struct GatherOptions {
   int resolution = kDefaultGatherResolution;
@@ -75,6 +77,12 @@ struct GatherStats {
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* stats = nullptr);
+
+/// The (vertex, drawn element) pairs the gather's hemicubes would sort to their faces: the
+/// gathering vertices times the mean of kGatherWorkProbes of them spread over the mesh. A
+/// hemicube that culls hidden elements (interiors) costs what it sees, one that does not
+/// every element. Deterministic: the same mesh gives the same figure on any machine.
+double gatherWork(const PatchMesh& mesh, const PatchMesh* base, double sceneSize, const GatherOptions& options);
 
 /// The emission and reflectance of each vertex's surface (vertices belong to one side of one
 /// surface); zero for an isolated vertex.

@@ -109,6 +109,9 @@ class Hemicube {
   void setCulling(HemicubeCulling culling);
   HemicubeCulling culling() const { return culling_; }
   const HemicubeCounts& counts() const { return counts_; }
+  /// The elements the last compute sorted to its faces (every element without culling): what
+  /// its cost follows.
+  size_t sorted() const { return sortedCount_; }
 
   /// What one face draws: the clip-space vertices of the triangles that may show on it (z =
   /// near, reversed [0, 1] depth, GREATER), 3 indices per triangle into them (or none: three

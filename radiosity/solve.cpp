@@ -10,6 +10,7 @@
 #include "mesh/default_camera.h"
 #include "mesh/error.h"
 #include "mesh/parallel.h"
+#include "radiosity/final_gather.h"
 #include "radiosity/result.h"
 
 namespace rad {
@@ -95,16 +96,16 @@ constexpr double kNoTimeLeft = 1e-9;
 /// The gather may take at most this share of the time a time limit leaves after meshing.
 constexpr double kGatherShareOfTimeLeft = 0.5;
 
-/// The final gather if the settings ask for it and it fits the budget: each gathering vertex's
-/// hemicube (the mesh's before refinement: gather_points.h) draws every element of that mesh,
-/// so its work grows as vertices × elements. Skipped, the progressive solve is the answer and
-/// shoots as it would without the gather.
+/// The final gather if the settings ask for it and it fits the budget: its work is the
+/// elements the gathering vertices' hemicubes draw (gatherWork: every element of the mesh
+/// before refinement, or in an interior those a vertex's room shows). Skipped, the
+/// progressive solve is the answer and shoots as it would without the gather.
 void decideGather(MeshedScene& s) {
   if (!s.settings.finalGather) return;
-  const PatchMesh& drawnMesh = s.base ? *s.base : s.mesh;
-  const double drawn = drawnMesh.elementCount();
-  const size_t gathering = drawnMesh.mesh.n_vertices();
-  const double work = double(gathering) * drawn;
+  GatherOptions options;
+  options.resolution = s.settings.gatherResolution;
+  options.seed = s.settings.seed;
+  const double work = s.gatherWork = gatherWork(s.mesh, s.base.get(), s.scene.diagonal(), options);
   const double seconds = work * kGatherSecondsPerPair / workerCount(0), left = timeLeft(s);
   s.gather = work <= kMaxGatherWork && !(left > 0 && seconds > kGatherShareOfTimeLeft * left);
   if (s.gather) return;
@@ -112,10 +113,10 @@ void decideGather(MeshedScene& s) {
   char text[320];
   if (work > kMaxGatherWork)
     std::snprintf(text, sizeof text,
-                  "final gather skipped: %zu vertices each drawing %.0f elements is more than the %.0e "
-                  "vertex-element pairs it may cost (about ten seconds); the progressive solution is shown "
-                  "at the vertices (coarser elements gather: raise solver.max_element_edge)",
-                  gathering, drawn, kMaxGatherWork);
+                  "final gather skipped: its hemicubes would draw %.2g vertex-element pairs, more than the "
+                  "%.0e it may cost (about ten seconds); the progressive solution is shown at the vertices "
+                  "(coarser elements gather: raise solver.max_element_edge)",
+                  work, kMaxGatherWork);
   else if (left > kNoTimeLeft)
     std::snprintf(text, sizeof text,
                   "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "

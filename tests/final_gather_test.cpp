@@ -156,18 +156,26 @@ TEST(FinalGatherTest, ElementsShowTheMeanOfTheirVertices) {
 }
 
 TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
-  Scene scene = loadSceneToSolve(test::kData + "fine_floor.json");
+  Scene scene = loadSceneToSolve(test::kData + "fine_box.json");
   std::vector<std::string> warnings;
   const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed =
       meshScene(std::move(scene), settings, {false, [&](const std::string& w) { warnings.push_back(w); }});
   EXPECT_FALSE(meshed.gather);
-  const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
-  EXPECT_GT(double(drawn.mesh.n_vertices()) * drawn.elementCount(), kMaxGatherWork);
+  EXPECT_GT(meshed.gatherWork, kMaxGatherWork);
   EXPECT_EQ(meshed.settings.hemicubeResolution, kDefaultHemicubeResolution);  // shoots as without the gather
   EXPECT_EQ(meshed.settings.tolerance, kDefaultTolerance);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
                           [](const std::string& w) { return w.find("final gather skipped") != std::string::npos; }));
+}
+
+/// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather's
+/// work is every gathering vertex times every element of the mesh before refinement.
+TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
+  const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
+  ASSERT_TRUE(s->meshed.gather);
+  const PatchMesh& drawn = *s->meshed.base;
+  EXPECT_EQ(s->meshed.gatherWork, double(s->solution.gather.points) * drawn.elementCount());
 }
 
 /// A time limit that meshing alone uses up: no gather and no shot, but a result to look at

@@ -1,8 +1,11 @@
 // radiosity info SCENE: surfaces, areas, materials, emitters, patch and element counts.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <tuple>
 
+#include "mesh/number_text.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
@@ -109,8 +112,8 @@ void printContacts(const Scene& scene, const PatchMesh& mesh) {
 
 /// How the direct light is shown: at the vertices by rays (points, rays) or from the hemicubes.
 std::string directLine(const DirectLight* direct) {
-  return direct ? "at vertices by rays, " + std::to_string(direct->samples()) + " points on the emitters, " +
-                      std::to_string(direct->rays()) + " rays"
+  return direct ? "at vertices by rays, " + std::to_string(direct->samples()) + " points on " +
+                      std::to_string(direct->lights().size()) + " lights, " + std::to_string(direct->rays()) + " rays"
                 : "from the hemicubes";
 }
 
@@ -128,12 +131,14 @@ std::string gatherLine(const MeshedScene& meshed) {
   const std::string others = meshed.base ? " (the other " + std::to_string(meshed.mesh.mesh.n_vertices() - drawn.mesh.n_vertices()) +
                                                ", added by refinement, interpolate)" : "";
   return "at " + std::to_string(drawn.mesh.n_vertices()) + " vertices" + others + " over " +
-         std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution);
+         std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution) +
+         ", drawing " + shortNumberText(std::round(meshed.gatherWork)) + " elements in all";
 }
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
 void printMeshing(const MeshedScene& meshed, double seconds) {
-  const auto& [scene, settings, mesh, direct, adaptive, base, gather, started] = meshed;
+  const auto& [scene, settings, mesh, direct, adaptive] = std::tie(meshed.scene, meshed.settings, meshed.mesh,
+                                                                 meshed.direct, meshed.adaptive);
   std::printf("emitters    %s\n", scene.hasEmitter() ? "yes" : "none (solve needs at least one)");
   for (const std::string& note : scene.notes) std::printf("note        %s\n", note.c_str());
   std::printf("quality     min angle %.2f deg, max element edge %.6g, widest patch %.6g\n",

@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   Solved reference = solve(scene, refSettings);
   const PatchMesh& refMesh = reference.meshed.mesh;
   std::fprintf(stderr, "reference: %d elements, %.1f s\n", refMesh.elementCount(), reference.seconds);
-  DirectLight exact(refMesh, scene.diagonal(), kReferenceLightSamples);
+  DirectLight exact(refMesh, scene.diagonal(), kReferenceLightSamples, kReferenceLightSamples);
   const auto refElements = frontElementsBySurface(refMesh, scene.surfaces.size());
 
   std::mt19937_64 random(1);
