@@ -7,10 +7,12 @@
 
 namespace rad {
 
-/// One stage and its wall time.
+/// One stage, its wall time and the process's peak memory (MiB) when it last ended: where
+/// the peak grows, that stage raised it.
 struct StageTime {
   std::string name;
   double seconds = 0;
+  double peakMiB = 0;
 };
 
 /// The stages of a computation in the order they first ran; a stage may run in several
@@ -26,6 +28,8 @@ class StageTimes {
   /// Appends the other's stages, adding to those of the same name.
   void add(const StageTimes& other);
 
+  /// The process's peak resident memory so far, MiB.
+  static double peakMiB();
   /// Wall-clock seconds since `start`.
   static double since(Clock::time_point start);
 
@@ -34,6 +38,9 @@ class StageTimes {
   double total() const;
 
  private:
+  /// The stage of this name (it must be there).
+  StageTime& find(const std::string& name);
+
   std::vector<StageTime> stages_;
 };
 

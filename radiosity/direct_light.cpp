@@ -243,22 +243,20 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
          (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
 }
 
-std::vector<char> DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin,
-                                              const std::vector<int>& samples, long& raysCast) const {
-  std::vector<char> visible(samples.size());
+void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
+                                 std::vector<char>& visible, long& raysCast) const {
+  visible.resize(samples.size());
   if (probe.visible) {
     for (size_t k = 0; k < samples.size(); ++k)
       visible[k] = (*probe.visible)[size_t(samples[k] / 64)] >> (samples[k] % 64) & 1;
-    return visible;
+    return;
   }
-  std::vector<glm::dvec3> to;
-  to.reserve(samples.size());
+  thread_local std::vector<glm::dvec3> to;
+  to.clear();
   for (int j : samples) to.push_back(points_[size_t(j)]);
-  std::vector<char> blocked;
-  rays_impl_->blocked(origin, to, blocked);
+  rays_impl_->blocked(origin, to, visible);
   raysCast += long(samples.size());
-  for (size_t k = 0; k < samples.size(); ++k) visible[k] = !blocked[k];
-  return visible;
+  for (char& v : visible) v = !v;
 }
 
 namespace {
@@ -308,11 +306,12 @@ double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, s
   return F > 0 ? F : 0;
 }
 
-DirectLight::SeenLight DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
-  SeenLight out;
+void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const {
+  out.above.clear(), out.weight.clear(), out.visible.clear();
+  out.all = 0, out.stride = 0;
   const LightPolygon& light = lights_[t];
   out.F = unoccludedFactor(p, n, t);
-  if (!(out.F > 0)) return out;
+  if (!(out.F > 0)) return;
   for (int j = light.first; j < light.first + light.count; ++j) {
     const glm::dvec3 d = onLight_[size_t(j)] - p;
     const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
@@ -323,17 +322,18 @@ DirectLight::SeenLight DirectLight::samplesAbove(const glm::dvec3& p, const glm:
   }
   if (!(out.all > 0)) out.above.clear(), out.weight.clear();
   out.visible.assign(out.above.size(), 0);
-  return out;
 }
 
 void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light,
                        long& raysCast) const {
   if (light.stride && light.stride <= stride) return;
-  std::vector<int> samples;
-  std::vector<size_t> at;
+  thread_local std::vector<int> samples;
+  thread_local std::vector<size_t> at;
+  thread_local std::vector<char> visible;
+  samples.clear(), at.clear();
   for (size_t k = 0; k < light.above.size(); k += stride)
     if (!light.stride || k % light.stride) samples.push_back(light.above[k]), at.push_back(k);
-  const std::vector<char> visible = samplesVisible(probe, p, samples, raysCast);
+  samplesVisible(probe, p, samples, visible, raysCast);
   for (size_t i = 0; i < at.size(); ++i) light.visible[at[i]] = visible[i];
   light.stride = stride;
   for (size_t k = 0; k < light.above.size(); ++k)
@@ -348,11 +348,12 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   const glm::dvec3 p = offSurface(probe, sceneSize_);
   // Each light's samples above the horizon and its unoccluded light first: the lights share
   // the point's rays by what each brings (a probe given its visibility casts none).
-  std::vector<SeenLight> seen(lights_.size());
-  std::vector<double> lum(lights_.size());
+  thread_local std::vector<SeenLight> seen;  // reused from probe to probe: no allocation
+  thread_local std::vector<double> lum;
+  seen.resize(lights_.size()), lum.assign(lights_.size(), 0.0);
   double open = 0;
   for (size_t t = 0; t < lights_.size(); ++t) {
-    seen[t] = samplesAbove(p, probe.normal, t);
+    samplesAbove(p, probe.normal, t, seen[t]);
     if (!seen[t].above.empty()) open += lum[t] = luminance(lights_[t].emission) * seen[t].F;
   }
   if (!(open > 0)) return out;

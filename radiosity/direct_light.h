@@ -92,13 +92,14 @@ class DirectLight {
   /// Adds a sample point on a light with unit normal `normal`.
   void addSample(const glm::dvec3& at, const glm::dvec3& normal);
   /// Whether each of the samples is visible from `origin` (given by the probe, or by rays).
-  std::vector<char> samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
-                                   long& raysCast) const;
+  void samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
+                      std::vector<char>& visible, long& raysCast) const;
   struct SeenLight;
   /// Light t's exact unoccluded factor from p with normal n (0 behind it).
   double unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
-  /// Light t seen from p with normal n: its samples above the horizon, none tested yet.
-  SeenLight samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
+  /// Light t seen from p with normal n into `out`: its samples above the horizon, none tested
+  /// yet.
+  void samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const;
   /// Tests every stride-th of the light's samples from p (those not tested yet), unless it
   /// was tested as finely already.
   void test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light, long& raysCast) const;

@@ -25,10 +25,10 @@ std::vector<glm::dvec3> clipToHemisphere(const glm::dvec3& x, const glm::dvec3& 
 
 }  // namespace
 
-double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
-                              const std::vector<glm::dvec3>& polygon) {
-  std::vector<glm::dvec3> p = clipToHemisphere(x, n, polygon);
-  if (p.size() < 3) return 0.0;
+namespace {
+
+/// Lambert's formula over a polygon wholly above x's tangent plane.
+double lambert(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& p) {
   double sum = 0;
   for (size_t i = 0; i < p.size(); ++i) {
     glm::dvec3 r0 = p[i] - x, r1 = p[(i + 1) % p.size()] - x;
@@ -39,6 +39,20 @@ double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
     sum += gamma * glm::dot(n, c) / len;
   }
   return std::abs(sum) / (2 * M_PI);
+}
+
+}  // namespace
+
+double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
+                              const std::vector<glm::dvec3>& polygon) {
+  // Wholly above the horizon or wholly below it, as most lights are from most points, the
+  // polygon needs no clipping (the clipped copy would be the same corners in the same order).
+  size_t above = 0;
+  for (const glm::dvec3& a : polygon) above += glm::dot(n, a - x) >= 0;
+  if (above == 0 || polygon.size() < 3) return 0.0;
+  if (above == polygon.size()) return lambert(x, n, polygon);
+  const std::vector<glm::dvec3> p = clipToHemisphere(x, n, polygon);
+  return p.size() < 3 ? 0.0 : lambert(x, n, p);
 }
 
 }  // namespace rad

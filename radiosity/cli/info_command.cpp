@@ -158,9 +158,9 @@ double secondsToMesh(const StageTimes& stages) {
 
 /// The time of each stage, then their total.
 void printStages(const StageTimes& stages) {
-  std::printf("\nstages      seconds\n");
-  for (const StageTime& s : stages.list()) std::printf("  %-28s %9.3f\n", s.name.c_str(), s.seconds);
-  std::printf("  %-28s %9.3f\n", "total", stages.total());
+  std::printf("\nstages                         seconds  peak MiB\n");
+  for (const StageTime& s : stages.list()) std::printf("  %-28s %9.3f %9.0f\n", s.name.c_str(), s.seconds, s.peakMiB);
+  std::printf("  %-28s %9.3f %9.0f\n", "total", stages.total(), StageTimes::peakMiB());
 }
 
 /// Flushes standard output; a failed write is an error.

@@ -208,7 +208,8 @@ Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown) {
 
 Json stagesTable(const StageTimes& stages) {
   Json table = Json::array();
-  for (const StageTime& s : stages.list()) table.push_back({{"name", s.name}, {"seconds", s.seconds}});
+  for (const StageTime& s : stages.list())
+    table.push_back({{"name", s.name}, {"seconds", s.seconds}, {"peak_mib", s.peakMiB}});
   return table;
 }
 

@@ -21,7 +21,8 @@ Json errorBlock(const ErrorSummary& e, const TrueError& truth, const std::string
 /// Every reference point with what is shown there.
 Json pointsTable(const TrueError& truth, const std::vector<glm::dvec3>& shown);
 
-/// The time of each stage of the run, as [{"name", "seconds"}, ...].
+/// The time of each stage of the run and the peak memory once it was done, as
+/// [{"name", "seconds", "peak_mib"}, ...].
 Json stagesTable(const StageTimes& stages);
 
 /// Everything the report says of a finished solve, but the history and the error.
