@@ -302,8 +302,14 @@ class PieceMesher {
     // Its first boundary sets its budget: refinement passing points back and forth with a
     // neighbour (a lamp's disk and the fitting through it) grows both boundaries, never it.
     if (!budget_[size_t(p)]) budget_[size_t(p)] = refinementBudget(poly, maxEdge_);
-    const Triangulation2 tri = meshPolygon(poly, maxEdge_, scene_.surfaces[size_t(piece.surface)].where,
-                                           piece.meshFace, budget_[size_t(p)]);
+    const Surface& surface = scene_.surfaces[size_t(piece.surface)];
+    // A black surface shows no light and receives none: within one element, its elements need
+    // no shape (a lamp's disk, cut by the tessellated holder round it, was refined to
+    // thousands of elements). A larger one is refined as any other, to element size.
+    const bool black = scene_.materials[size_t(surface.material)].reflectance == glm::dvec3(0.0);
+    const Triangulation2 tri = black && withinElement(poly, maxEdge_)
+                                   ? meshPolygonAsIs(poly, maxEdge_, surface.where, piece.meshFace)
+                                   : meshPolygon(poly, maxEdge_, surface.where, piece.meshFace, budget_[size_t(p)]);
     std::vector<int> global(tri.points.size());
     for (size_t i = 0; i < tri.points.size(); ++i) global[i] = pointId(p, poly, b, tri, i, dirty);
     auto& out = results_[p];

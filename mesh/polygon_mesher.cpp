@@ -349,10 +349,8 @@ std::vector<glm::dvec2> latticePoints(const CDT& cdt, const Polygon2& polygon, d
   return points;
 }
 
-/// Whether the polygon's outline fits within one element: no two of its points farther apart
-/// than maxEdge. A mesh file's small face, cut where another object touches it, is then
-/// meshed as it is; refined for shape, its neighbours' points and its own passed back and
-/// forth until a staircase's brass fittings had twenty elements per face.
+}  // namespace
+
 bool withinElement(const Polygon2& polygon, double maxEdge) {
   glm::dvec2 lo(HUGE_VAL), hi(-HUGE_VAL);
   for (const glm::dvec2& q : polygon.rings[0]) lo = glm::min(lo, q), hi = glm::max(hi, q);
@@ -363,6 +361,8 @@ bool withinElement(const Polygon2& polygon, double maxEdge) {
       if (glm::length(ring[j] - ring[i]) > maxEdge) return false;
   return true;
 }
+
+namespace {
 
 /// The polygon's constrained triangulation (rings and lines inserted as `ringEdges`), each
 /// triangle longer than maxEdge given the inside points of its congruent split, no point
@@ -391,6 +391,12 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
   CDT cdt;
   markInside(cdt, insertRings(cdt, polygon, where));
   return extract(cdt);
+}
+
+Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where, bool meshFace) {
+  CDT cdt;
+  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where, meshFace);
+  return meshAsIs(cdt, ringEdges, polygon, maxEdge);
 }
 
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,

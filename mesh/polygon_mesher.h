@@ -49,6 +49,18 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::string& where,
                            bool meshFace = false, size_t maxVertices = 0);
 
+/// Whether the polygon's outline fits within one element: no two of its points farther apart
+/// than maxEdge. A mesh file's small face, cut where another object touches it, is then
+/// meshed as it is; refined for shape, its neighbours' points and its own passed back and
+/// forth until a staircase's brass fittings had twenty elements per face.
+bool withinElement(const Polygon2& polygon, double maxEdge);
+
+/// The polygon meshed as it is: its constrained triangulation, each triangle longer than
+/// maxEdge split by the points of its congruent lattice, no point added on its boundary, no
+/// refinement for shape. For surfaces whose elements' shape shows nothing (black ones).
+Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where,
+                               bool meshFace = false);
+
 /// The vertices Delaunay refinement may make of the polygon before it counts as a sliver: a
 /// multiple of those of an equilateral mesh of its area at maxEdge and of its boundary
 /// points and lines.

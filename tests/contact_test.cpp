@@ -261,6 +261,33 @@ TEST(ContactTest, MeshFileBoxOnAFloor) {
   EXPECT_EQ(scene.surfaces[mesh.cutAway[0].enclosedBy[0]].name, "box");
 }
 
+/// A black surface shows no light: within one element (the floor 500 mm across, elements up
+/// to 800 mm), cut where a box stands on it, it is meshed as it is (its boundary's points, no
+/// refinement for shape), with the same area as in any other colour.
+TEST(ContactTest, ABlackSurfaceWithinAnElementIsMeshedAsItIs) {
+  auto floorOf = [](bool black) {
+    Scene scene = loadScene(std::string(RAD_SOURCE_DIR) + "/tests/data/box_on_floor.json");
+    if (black) {
+      scene.materials.push_back(scene.materials[0]);
+      scene.materials.back().reflectance = glm::dvec3(0.0);
+      scene.surfaces[0].material = int(scene.materials.size()) - 1;
+    }
+    SolverBlock flags;
+    flags.maxElementEdge = 800;
+    const PatchMesh mesh = buildPatchMesh(scene, resolveSettings(scene, flags).mesh());
+    int elements = 0;
+    double area = 0;
+    for (int e = 0; e < mesh.elementCount(); ++e)
+      if (mesh.surface(e) == 0) ++elements, area += mesh.area(e);
+    return std::pair{elements, area};
+  };
+  const auto [white, whiteArea] = floorOf(false);
+  const auto [black, blackArea] = floorOf(true);
+  std::printf("floor under a box: %d elements white, %d black\n", white, black);
+  EXPECT_LT(black, white);  // measured: 8 against 12
+  EXPECT_NEAR(blackArea / whiteArea, 1.0, 1e-9);
+}
+
 /// A wall with a doorway standing on a floor touches it along two stretches, not across the
 /// doorway: the floor gets element edges under the wall and none across the doorway, and
 /// nothing is cut away (the wall's back faces one side of the floor, which stays open).
