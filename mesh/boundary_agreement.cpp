@@ -10,9 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "mesh/error.h"
 #include "mesh/progress.h"
 #include "mesh/spatial_hash.h"
 
@@ -50,6 +53,9 @@ struct BoundaryIds {
   std::vector<std::vector<int>> ids, edgeOf;
 };
 
+/// The corners' grid has at most this many cells along its longest side.
+constexpr double kMaxPointCells = 4096;
+
 /// The ids, sorted and each once.
 std::vector<int> sortedUnique(std::vector<int> ids) {
   std::sort(ids.begin(), ids.end());
@@ -65,13 +71,17 @@ void bounds(const PointTable& table, const std::vector<int>& ids, glm::dvec3& lo
   }
 }
 
-/// The points (ids) in a hash of about 2 ∛n cells along the widest side of their box.
-SpatialHash pointHash(const PointTable& table, const std::vector<int>& ids) {
+/// The points (ids) in a hash of about 2 ∛n cells along the widest side of their box, or of
+/// cells no larger than `typicalEdge` (at most kMaxPointCells along that side) if those are finer.
+SpatialHash pointHash(const PointTable& table, const std::vector<int>& ids, double typicalEdge) {
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
   bounds(table, ids, lo, hi);
   double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
   int cells = std::clamp(int(2 * std::cbrt(double(ids.size()))), 1, 256);
-  SpatialHash hash(extent / cells * (1 + 1e-9), lo);
+  // No larger than a typical edge: a finely tessellated model (300 000 triangles a few
+  // centimetres across) put thousands of its corners in each cell of the room's grid, and
+  // every edge visited them all.
+  SpatialHash hash(std::min(extent / cells, std::max(typicalEdge, extent / kMaxPointCells)) * (1 + 1e-9), lo);
   for (int i : ids) hash.insert(table[i], i);
   return hash;
 }
@@ -120,6 +130,7 @@ class PieceMesher {
     stages.add("boundary agreement", start);
     out.triangles = std::move(results_);
     out.unresolved = unresolved_;
+    for (int p : leftOut_) out.leftOut += out.triangles[size_t(p)].empty();
     return out;
   }
 
@@ -157,10 +168,21 @@ class PieceMesher {
     return sortedUnique(std::move(corners));
   }
 
+  /// The median length of the pieces' ring edges.
+  double medianEdge() const {
+    std::vector<double> lengths;
+    for (const auto& piece : pieces_)
+      for (const auto& ring : piece.rings)
+        for (size_t k = 0; k < ring.size(); ++k) lengths.push_back(glm::length(table_[ring[(k + 1) % ring.size()]] - table_[ring[k]]));
+    if (lengths.empty()) return HUGE_VAL;
+    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+    return lengths[lengths.size() / 2];
+  }
+
   /// Cuts every ring edge at the ring corners of other pieces lying on it, then into parts
   /// no longer than maxEdge.
   void cutBoundaries() {
-    const SpatialHash grid = pointHash(table_, allCorners());
+    const SpatialHash grid = pointHash(table_, allCorners(), medianEdge());
     chains_.resize(pieces_.size());
     for (size_t p = 0; p < pieces_.size(); ++p)
       for (const auto& ring : pieces_[p].rings)
@@ -186,13 +208,28 @@ class PieceMesher {
     glm::dvec3 a = table_[from], b = table_[to], d = b - a;
     double len2 = glm::dot(d, d);
     std::vector<std::pair<double, int>> cuts;
-    glm::dvec3 pad(tolerance_);
-    grid.visit(glm::min(a, b) - pad, glm::max(a, b) + pad, [&](int c) {
+    const glm::dvec3 pad(tolerance_);
+    auto take = [&](int c) {
       if (c == from || c == to) return;
       double t = glm::dot(table_[c] - a, d) / len2;
       if (t > 0 && t < 1 && glm::length(a + d * t - table_[c]) <= tolerance_) cuts.emplace_back(t, c);
-    });
+    };
+    // A long edge askew to the grid: its box holds far more cells than lie along it, so it is
+    // walked in parts of a cell's length, each part's box visited (a point near two parts is
+    // found twice, kept once).
+    const double cell = grid.cellSize();
+    const glm::dvec3 span = glm::abs(d) + 2.0 * pad;
+    const double parts = std::ceil(std::sqrt(len2) / cell);
+    if ((span.x / cell + 1) * (span.y / cell + 1) * (span.z / cell + 1) <= 27 * parts) {
+      grid.visit(glm::min(a, b) - pad, glm::max(a, b) + pad, take);
+    } else {
+      for (double k = 0; k < parts; ++k) {
+        const glm::dvec3 p = a + d * (k / parts), q = a + d * ((k + 1) / parts);
+        grid.visit(glm::min(p, q) - pad, glm::max(p, q) + pad, take);
+      }
+    }
     std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
     return cuts;
   }
 
@@ -307,9 +344,19 @@ class PieceMesher {
     // no shape (a lamp's disk, cut by the tessellated holder round it, was refined to
     // thousands of elements). A larger one is refined as any other, to element size.
     const bool black = scene_.materials[size_t(surface.material)].reflectance == glm::dvec3(0.0);
-    const Triangulation2 tri = black && withinElement(poly, maxEdge_)
-                                   ? meshPolygonAsIs(poly, maxEdge_, surface.where, piece.meshFace)
-                                   : meshPolygon(poly, maxEdge_, surface.where, piece.meshFace, budget_[size_t(p)]);
+    Triangulation2 tri;
+    try {
+      tri = black && withinElement(poly, maxEdge_) ? meshPolygonAsIs(poly, maxEdge_, surface.where, piece.meshFace)
+                                                   : meshPolygon(poly, maxEdge_, surface.where, piece.meshFace, budget_[size_t(p)]);
+    } catch (const InputError&) {
+      // A mesh file's face whose outline, cut at contacts and snapped to its neighbours'
+      // points, crosses itself (a tiny face of a finely tessellated model) is left out, said
+      // in a warning; a scene polygon that does so is the user's to mend.
+      if (!piece.meshFace) throw;
+      leftOut_.insert(p);
+      results_[p].clear();
+      return;
+    }
     std::vector<int> global(tri.points.size());
     for (size_t i = 0; i < tri.points.size(); ++i) global[i] = pointId(p, poly, b, tri, i, dirty);
     auto& out = results_[p];
@@ -359,6 +406,7 @@ class PieceMesher {
   std::vector<std::vector<std::array<int, 3>>> results_;
   std::vector<size_t> budget_;  ///< per piece: the vertices its refinement may make
   int unresolved_ = 0;
+  std::set<int> leftOut_;  ///< mesh file faces that could not be meshed
 };
 
 }  // namespace

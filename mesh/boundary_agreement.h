@@ -17,6 +17,7 @@ struct PieceTriangles {
   std::vector<std::vector<std::array<int, 3>>> triangles;  ///< per piece
   int rounds = 0;      ///< meshing passes until the pieces agreed
   int unresolved = 0;  ///< boundary points left unshared (agreement gave up)
+  int leftOut = 0;     ///< mesh file faces whose cut outline crosses itself, left out
 };
 
 /// Meshes every piece with elements no longer than settings.maxElementEdge. Every boundary

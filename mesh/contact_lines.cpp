@@ -148,25 +148,65 @@ Box enclosing(const std::vector<Box>& boxes) {
   return all;
 }
 
+/// The median of the boxes' largest sides.
+double medianSide(const std::vector<Box>& boxes) {
+  std::vector<double> sides;
+  for (const Box& b : boxes) {
+    const glm::dvec3 d = b.hi - b.lo;
+    sides.push_back(std::max({d.x, d.y, d.z}));
+  }
+  if (sides.empty()) return HUGE_VAL;
+  std::nth_element(sides.begin(), sides.begin() + std::ptrdiff_t(sides.size() / 2), sides.end());
+  return sides[sides.size() / 2];
+}
+
 /// The pieces' boxes in a hash over the scene's box cut into cells × cells × cells cells
 /// (each axis divided alike, so cells are boxes, not cubes): the hash works in those grid
-/// coordinates. Candidates come cell by cell in x, y, z order, which orders the contact lines
-/// and so decides which new point is made first.
+/// coordinates. Candidates come cell by cell in x, y, z order (then the large pieces), which
+/// orders the contact lines and so decides which new point is made first.
+///
+/// Two cells per axis per cube root of the pieces, or as many as make a cell the size of a
+/// typical piece if that is more (a finely tessellated model, 300 000 triangles a few
+/// centimetres across, filed thousands of its faces per cell, and each visited them all),
+/// at most kMaxCells. A piece that would be filed in more than kMaxCellsPerPiece cells (a
+/// room's floor in a fine grid) is kept aside instead: every piece's candidates include the
+/// large ones, and a large one's candidates are every piece.
 class PieceBoxes {
  public:
-  explicit PieceBoxes(const std::vector<Box>& boxes)
-      : boxes_(boxes), cells_(std::clamp(int(2 * std::cbrt(double(boxes.size()))), 1, 64)) {
+  static constexpr double kMaxCells = 1024;
+  static constexpr double kMaxCellsPerPiece = 512;
+
+  explicit PieceBoxes(const std::vector<Box>& boxes) : boxes_(boxes) {
     const Box scene = enclosing(boxes);
+    const glm::dvec3 extent = scene.hi - scene.lo;
+    const double typical = std::max(double(2 * std::cbrt(double(boxes.size()))),
+                                    std::max({extent.x, extent.y, extent.z}) / medianSide(boxes));
+    cells_ = int(std::clamp(typical, 1.0, kMaxCells));
     lo_ = scene.lo;
-    cell_ = glm::max((scene.hi - scene.lo) / double(cells_), glm::dvec3(1e-300));
-    for (size_t p = 0; p < boxes.size(); ++p) hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
+    cell_ = glm::max(extent / double(cells_), glm::dvec3(1e-300));
+    large_.assign(boxes.size(), false);
+    for (size_t p = 0; p < boxes.size(); ++p) {
+      const glm::dvec3 a = glm::floor(grid(boxes[p].lo)), b = glm::floor(grid(boxes[p].hi));
+      const glm::dvec3 n = b - a + 1.0;
+      if (n.x * n.y * n.z > kMaxCellsPerPiece) {
+        large_[p] = true;
+        largeIds_.push_back(int(p));
+      } else {
+        hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
+      }
+    }
   }
 
-  /// Calls f(s) for every piece s filed in a cell that piece p's box touches (s may come
-  /// more than once).
+  /// Calls f(s) for every piece s filed in a cell that piece p's box touches and for every
+  /// large piece, or for every piece if p is large (s may come more than once).
   template <class F>
   void visit(size_t p, F&& f) const {
+    if (large_[p]) {
+      for (size_t s = 0; s < boxes_.size(); ++s) f(int(s));
+      return;
+    }
     hash_.visit(grid(boxes_[p].lo), grid(boxes_[p].hi), f);
+    for (int s : largeIds_) f(s);
   }
 
  private:
@@ -176,9 +216,11 @@ class PieceBoxes {
   }
 
   const std::vector<Box>& boxes_;
-  int cells_;
+  int cells_ = 1;
   glm::dvec3 lo_{0.0}, cell_{1.0};
   SpatialHash hash_{1.0};
+  std::vector<bool> large_;
+  std::vector<int> largeIds_;
 };
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts

@@ -83,6 +83,11 @@ PatchMesh buildPatchMesh(const Scene& scene, const MeshSettings& settings) {
   if (elements.unresolved)
     out.warnings.push_back("meshing: " + std::to_string(elements.unresolved) +
                            " boundary points could not be shared with the neighbouring surface");
+  if (elements.leftOut)
+    out.warnings.push_back("meshing: " + std::to_string(elements.leftOut) +
+                           " faces of mesh files were left out: cut where other objects touch them, their "
+                           "outlines crossed themselves (tiny faces of finely tessellated models; light may pass "
+                           "through the gaps they leave)");
   // Elements ▸ patches ▸ the OpenMesh mesh.
   meshing::assemblePatchMesh(scene, table, pieces, elements, settings.maxPatchEdge, out);
   return out;

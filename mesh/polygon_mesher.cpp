@@ -100,10 +100,12 @@ RingEdges insertRings(CDT& cdt, const Polygon2& polygon, const std::string& wher
   return ringEdges;
 }
 
-/// insertRings, but a mesh file's face whose contact lines cross each other (interpenetrating
-/// parts of one downloaded model) is meshed without them rather than refusing the scene.
-RingEdges insertFaceRings(CDT& cdt, const Polygon2& polygon, const std::string& where, bool meshFace) {
-  if (!meshFace || polygon.lines.empty()) return insertRings(cdt, polygon, where);
+/// insertRings, but a polygon whose contact lines cross each other (interpenetrating parts
+/// of one downloaded model, a lamp's disk pierced by the finely tessellated holder round it)
+/// is meshed without them rather than refusing the scene: the lines are the contacts' doing,
+/// not the user's.
+RingEdges insertFaceRings(CDT& cdt, const Polygon2& polygon, const std::string& where) {
+  if (polygon.lines.empty()) return insertRings(cdt, polygon, where);
   try {
     return insertRings(cdt, polygon, where);
   } catch (const InputError&) {
@@ -292,7 +294,7 @@ Triangulation2 meshTriangleFace(const Polygon2& polygon, double maxEdge, const s
   const double longest = std::max({glm::length(t[1] - t[0]), glm::length(t[2] - t[1]), glm::length(t[0] - t[2])});
   const int m = int(std::ceil(longest / maxEdge));
   CDT cdt;
-  RingEdges ringEdges = insertFaceRings(cdt, polygon, where, true);
+  RingEdges ringEdges = insertFaceRings(cdt, polygon, where);
   for (const glm::dvec2& q : latticeInside(polygon, t, m, longest)) cdt.insert(K::Point_2(q.x, q.y));
   markInside(cdt, ringEdges);
   return extract(cdt);
@@ -395,7 +397,7 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
 
 Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where, bool meshFace) {
   CDT cdt;
-  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where, meshFace);
+  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where);
   return meshAsIs(cdt, ringEdges, polygon, maxEdge);
 }
 
@@ -405,14 +407,14 @@ Triangulation2 meshPolygon(const Polygon2& polygon, double maxEdge, const std::s
   if (meshFace && isTriangleFace(polygon) && !isLargeWellShaped(polygon, maxEdge))
     return meshTriangleFace(polygon, maxEdge, where);
   CDT cdt;
-  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where, meshFace);
+  const RingEdges ringEdges = insertFaceRings(cdt, polygon, where);
   if (meshFace && withinElement(polygon, maxEdge)) return meshAsIs(cdt, ringEdges, polygon, maxEdge);
   const std::vector<K::Point_2> seeds = markInside(cdt, ringEdges);
   if (refineWithin(cdt, seeds, maxEdge, maxVertices ? maxVertices : refinementBudget(polygon, maxEdge)))
     return extract(cdt);
   // A sliver: refined for shape it would fill with tiny elements. Meshed as it is instead.
   cdt.clear();
-  return meshAsIs(cdt, insertFaceRings(cdt, polygon, where, meshFace), polygon, maxEdge);
+  return meshAsIs(cdt, insertFaceRings(cdt, polygon, where), polygon, maxEdge);
 }
 
 }  // namespace rad
