@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 
+#include <unordered_map>
+
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
@@ -169,44 +171,57 @@ double medianSide(const std::vector<Box>& boxes) {
 /// typical piece if that is more (a finely tessellated model, 300 000 triangles a few
 /// centimetres across, filed thousands of its faces per cell, and each visited them all),
 /// at most kMaxCells. A piece that would be filed in more than kMaxCellsPerPiece cells (a
-/// room's floor in a fine grid) is kept aside instead: every piece's candidates include the
-/// large ones, and a large one's candidates are every piece.
+/// room's floor in a fine grid) is large: large pieces go in a coarse grid of world cubes
+/// (2∛n a side, at most kMaxCoarseCells), which every piece visits too, and a large piece's
+/// candidates among the others are found once, from their side.
 class PieceBoxes {
  public:
   static constexpr double kMaxCells = 1024;
   static constexpr double kMaxCellsPerPiece = 512;
+  static constexpr double kMaxCoarseCells = 64;
 
   explicit PieceBoxes(const std::vector<Box>& boxes) : boxes_(boxes) {
     const Box scene = enclosing(boxes);
     const glm::dvec3 extent = scene.hi - scene.lo;
-    const double typical = std::max(double(2 * std::cbrt(double(boxes.size()))),
-                                    std::max({extent.x, extent.y, extent.z}) / medianSide(boxes));
-    cells_ = int(std::clamp(typical, 1.0, kMaxCells));
+    const double widest = std::max({extent.x, extent.y, extent.z, 1e-300});
+    const double perRoot = 2 * std::cbrt(double(boxes.size()));
+    cells_ = int(std::clamp(std::max(perRoot, widest / medianSide(boxes)), 1.0, kMaxCells));
     lo_ = scene.lo;
     cell_ = glm::max(extent / double(cells_), glm::dvec3(1e-300));
+    coarse_ = SpatialHash(widest / std::clamp(perRoot, 1.0, kMaxCoarseCells), scene.lo);
     large_.assign(boxes.size(), false);
     for (size_t p = 0; p < boxes.size(); ++p) {
-      const glm::dvec3 a = glm::floor(grid(boxes[p].lo)), b = glm::floor(grid(boxes[p].hi));
-      const glm::dvec3 n = b - a + 1.0;
-      if (n.x * n.y * n.z > kMaxCellsPerPiece) {
-        large_[p] = true;
-        largeIds_.push_back(int(p));
-      } else {
+      const glm::dvec3 n = glm::floor(grid(boxes[p].hi)) - glm::floor(grid(boxes[p].lo)) + 1.0;
+      large_[p] = n.x * n.y * n.z > kMaxCellsPerPiece;
+      if (large_[p])
+        coarse_.insert(boxes[p].lo, boxes[p].hi, int(p));
+      else
         hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
-      }
+    }
+    // Each large piece's candidates among the small ones, each once, in piece order.
+    std::vector<int> last(boxes.size(), -1);
+    for (size_t s = 0; s < boxes.size(); ++s) {
+      if (large_[s]) continue;
+      coarse_.visit(boxes[s].lo, boxes[s].hi, [&](int r) {
+        if (last[size_t(r)] == int(s) || !boxesMeet(boxes[s], boxes[size_t(r)])) return;
+        last[size_t(r)] = int(s);
+        smallOfLarge_[r].push_back(int(s));
+      });
     }
   }
 
-  /// Calls f(s) for every piece s filed in a cell that piece p's box touches and for every
-  /// large piece, or for every piece if p is large (s may come more than once).
+  /// Calls f(s) for the pieces s whose boxes may meet piece p's (s may come more than once):
+  /// those filed in a cell p's box touches, and the large ones near it.
   template <class F>
   void visit(size_t p, F&& f) const {
     if (large_[p]) {
-      for (size_t s = 0; s < boxes_.size(); ++s) f(int(s));
-      return;
+      auto it = smallOfLarge_.find(int(p));
+      if (it != smallOfLarge_.end())
+        for (int s : it->second) f(s);
+    } else {
+      hash_.visit(grid(boxes_[p].lo), grid(boxes_[p].hi), f);
     }
-    hash_.visit(grid(boxes_[p].lo), grid(boxes_[p].hi), f);
-    for (int s : largeIds_) f(s);
+    coarse_.visit(boxes_[p].lo, boxes_[p].hi, f);
   }
 
  private:
@@ -218,9 +233,9 @@ class PieceBoxes {
   const std::vector<Box>& boxes_;
   int cells_ = 1;
   glm::dvec3 lo_{0.0}, cell_{1.0};
-  SpatialHash hash_{1.0};
+  SpatialHash hash_{1.0}, coarse_{1.0};
   std::vector<bool> large_;
-  std::vector<int> largeIds_;
+  std::unordered_map<int, std::vector<int>> smallOfLarge_;
 };
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts

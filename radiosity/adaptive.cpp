@@ -10,6 +10,7 @@
 #include "mesh/color.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "mesh/progress.h"
 #include "mesh/refine.h"
 #include "radiosity/settings.h"
 #include "radiosity/result.h"
@@ -233,7 +234,9 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   const DisplayEstimate estimate = estimateDisplay(mesh, light);
   MidpointLight midpoints;
   stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
+  StageProgress progress("refinement: rounds (at most)", size_t(options.maxRounds));
   for (int round = 0; round < options.maxRounds && light.enabled() && !capReached(mesh, options); ++round) {
+    progress.update(size_t(round));
     std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
     if (marked.empty()) break;
     stats.marked += int(marked.size());

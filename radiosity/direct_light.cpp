@@ -12,6 +12,7 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "mesh/parallel.h"
+#include "mesh/progress.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/shooter_samples.h"
 
@@ -391,9 +392,14 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
     long rays = 0;
   };
   std::vector<Count> cast(static_cast<size_t>(workers_));
+  StageProgress progress("direct light: points", probes.size());  // said by the caller's worker
   parallelFor(
       probes.size(), workers_,
-      [&](size_t k, int worker) { out[k] = compute(probes[k], cast[size_t(worker)].rays); }, 64);
+      [&](size_t k, int worker) {
+        if (worker == 0) progress.update(k);
+        out[k] = compute(probes[k], cast[size_t(worker)].rays);
+      },
+      64);
   for (const Count& c : cast) rays_ += c.rays;
   return out;
 }

@@ -252,22 +252,27 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
   return out;
 }
 
-double gatherWork(const PatchMesh& mesh, const PatchMesh* base, double sceneSize, const GatherOptions& options) {
+GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
+                              const GatherOptions& options) {
   const GatherPoints points = gatherPoints(mesh, base, vertexReflectance(mesh));
   std::vector<int> gathering;
   for (size_t v = 0; v < points.at.size(); ++v)
     if (points.at[v]) gathering.push_back(int(v));
-  if (gathering.empty()) return 0;
+  GatherEstimate out;
+  if (gathering.empty()) return out;
   const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(base ? *base : mesh);
   Hemicube cube(geometry, options.resolution, sceneSize);
   FormFactors f;
   const size_t probes = std::min(gathering.size(), size_t(kGatherWorkProbes));
-  double sorted = 0;
   for (size_t k = 0; k < probes; ++k) {
     factorsAt(mesh, sceneSize, options.seed, gathering[(2 * k + 1) * gathering.size() / (2 * probes)], cube, f);
-    sorted += double(cube.sorted());
+    out.work += double(cube.sorted());
+    out.factors += double(f.elements.size());
   }
-  return double(gathering.size()) * sorted / double(probes);
+  const double perProbe = double(gathering.size()) / double(probes);
+  out.work *= perProbe;
+  out.factors *= perProbe;
+  return out;
 }
 
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,

@@ -34,13 +34,13 @@ namespace rad {
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
 /// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
-/// (gatherWork), about kGatherSecondsPerPair each on one core of this machine class, so 5e8
+/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class, so 5e8
 /// is some eight seconds on two.
 constexpr double kMaxGatherWork = 5e8;
 /// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
 /// hemicubes over 7 690 elements in 0.52 s on two).
 constexpr double kGatherSecondsPerPair = 3e-8;
-/// Gathering vertices whose hemicubes gatherWork renders to estimate the rest's.
+/// Gathering vertices whose hemicubes estimateGather renders to estimate the rest's.
 constexpr int kGatherWorkProbes = 16;
 
 struct GatherOptions {
@@ -50,8 +50,9 @@ struct GatherOptions {
   double tolerance = 1e-5;        ///< relative residual of the vertex system
   int maxIterations = 200;
   /// Memory for the vertices' factors, kept to iterate; a scene that needs more is gathered
-  /// once over the solved elements instead.
-  size_t memoryBytes = size_t(512) << 20;
+  /// once over the solved elements instead. 2 GiB: Modern Hall split to 300k triangles keeps
+  /// about 1.2 GB (a vertex's row holds what its 32×32 hemicube shows, some 660 elements).
+  size_t memoryBytes = size_t(2) << 30;
   /// A time limit: hemicubes not rendered by then are abandoned (the gather gives up) and the
   /// iteration stops where it is.
   std::optional<std::chrono::steady_clock::time_point> deadline;
@@ -78,11 +79,22 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* stats = nullptr);
 
-/// The (vertex, drawn element) pairs the gather's hemicubes would sort to their faces: the
-/// gathering vertices times the mean of kGatherWorkProbes of them spread over the mesh. A
-/// hemicube that culls hidden elements (interiors) costs what it sees, one that does not
-/// every element. Deterministic: the same mesh gives the same figure on any machine.
-double gatherWork(const PatchMesh& mesh, const PatchMesh* base, double sceneSize, const GatherOptions& options);
+/// What the gather would cost, from kGatherWorkProbes of its vertices spread over the mesh.
+/// Deterministic: the same mesh gives the same figures on any machine.
+struct GatherEstimate {
+  /// The (vertex, drawn element) pairs its hemicubes would sort to their faces: a hemicube
+  /// that culls hidden elements (interiors) costs what it sees, one that does not every element.
+  double work = 0;
+  /// The non-zero factors of all its rows (GatherOptions::memoryBytes keeps them to iterate).
+  double factors = 0;
+  /// Whether the rows would fit the memory budget: the vertex system is iterated to its own
+  /// solution, whatever the progressive start.
+  bool iterates(const GatherOptions& options) const {
+    return factors * double(sizeof(int) + sizeof(float)) <= double(options.memoryBytes);
+  }
+};
+GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
+                              const GatherOptions& options);
 
 /// The emission and reflectance of each vertex's surface (vertices belong to one side of one
 /// surface); zero for an isolated vertex.

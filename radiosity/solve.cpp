@@ -10,7 +10,6 @@
 #include "mesh/default_camera.h"
 #include "mesh/error.h"
 #include "mesh/parallel.h"
-#include "radiosity/final_gather.h"
 #include "radiosity/result.h"
 
 namespace rad {
@@ -97,7 +96,7 @@ constexpr double kNoTimeLeft = 1e-9;
 constexpr double kGatherShareOfTimeLeft = 0.5;
 
 /// The final gather if the settings ask for it and it fits the budget: its work is the
-/// elements the gathering vertices' hemicubes draw (gatherWork: every element of the mesh
+/// elements the gathering vertices' hemicubes draw (estimateGather: every element of the mesh
 /// before refinement, or in an interior those a vertex's room shows). Skipped, the
 /// progressive solve is the answer and shoots as it would without the gather.
 void decideGather(MeshedScene& s) {
@@ -105,10 +104,18 @@ void decideGather(MeshedScene& s) {
   GatherOptions options;
   options.resolution = s.settings.gatherResolution;
   options.seed = s.settings.seed;
-  const double work = s.gatherWork = gatherWork(s.mesh, s.base.get(), s.scene.diagonal(), options);
+  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.base.get(), s.scene.diagonal(), options);
+  const double work = estimate.work;
   const double seconds = work * kGatherSecondsPerPair / workerCount(0), left = timeLeft(s);
   s.gather = work <= kMaxGatherWork && !(left > 0 && seconds > kGatherShareOfTimeLeft * left);
-  if (s.gather) return;
+  if (s.gather) {
+    // Iterated to its own solution, the gather needs only a start: no more than
+    // kGatherStartMaxShots shots however many patches there are.
+    const double patches = double(s.mesh.patches.size());
+    if (estimate.iterates(options) && s.settings.shotsPerPatch * patches > double(kGatherStartMaxShots))
+      s.settings.shotsPerPatch = double(kGatherStartMaxShots) / patches;
+    return;
+  }
   if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
   char text[320];
   if (work > kMaxGatherWork)

@@ -46,9 +46,9 @@ struct MeshedScene {
   /// gather would cost more than kMaxGatherWork, or more than half the time limit left once
   /// meshed (said in a warning).
   bool gather = false;
-  /// The (vertex, drawn element) pairs the gather's hemicubes would sort to their faces
-  /// (gatherWork; 0 with the gather off).
-  double gatherWork = 0;
+  /// What the gather would cost: the elements its hemicubes would draw, the factors it would
+  /// keep (estimateGather; zeros with the gather off).
+  GatherEstimate gatherEstimate;
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();

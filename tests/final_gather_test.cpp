@@ -162,7 +162,7 @@ TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
   const MeshedScene meshed =
       meshScene(std::move(scene), settings, {false, [&](const std::string& w) { warnings.push_back(w); }});
   EXPECT_FALSE(meshed.gather);
-  EXPECT_GT(meshed.gatherWork, kMaxGatherWork);
+  EXPECT_GT(meshed.gatherEstimate.work, kMaxGatherWork);
   EXPECT_EQ(meshed.settings.hemicubeResolution, kDefaultHemicubeResolution);  // shoots as without the gather
   EXPECT_EQ(meshed.settings.tolerance, kDefaultTolerance);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
@@ -175,7 +175,22 @@ TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
   ASSERT_TRUE(s->meshed.gather);
   const PatchMesh& drawn = *s->meshed.base;
-  EXPECT_EQ(s->meshed.gatherWork, double(s->solution.gather.points) * drawn.elementCount());
+  EXPECT_EQ(s->meshed.gatherEstimate.work, double(s->solution.gather.points) * drawn.elementCount());
+}
+
+/// With rows that fit its memory, the gather is iterated to its own solution from any start:
+/// the start shoots at most kGatherStartMaxShots times however many patches there are.
+TEST(FinalGatherTest, IteratedGatherStartsFromAFewHundredShots) {
+  Scene scene = loadSceneToSolve(test::kData + "four_lamps.json");
+  SolverBlock flags;
+  flags.maxPatchEdge = 0.05;  // a patch per element: thousands of patches
+  const Settings settings = resolveSettings(scene, flags);
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
+  ASSERT_TRUE(meshed.gather);
+  ASSERT_TRUE(meshed.gatherEstimate.iterates(GatherOptions{}));
+  const double patches = double(meshed.mesh.patches.size());
+  EXPECT_GT(kGatherStartShotsPerPatch * patches, double(kGatherStartMaxShots));
+  EXPECT_NEAR(meshed.settings.shotsPerPatch * patches, double(kGatherStartMaxShots), 1e-6);
 }
 
 /// A time limit that meshing alone uses up: no gather and no shot, but a result to look at

@@ -132,7 +132,9 @@ std::string gatherLine(const MeshedScene& meshed) {
                                                ", added by refinement, interpolate)" : "";
   return "at " + std::to_string(drawn.mesh.n_vertices()) + " vertices" + others + " over " +
          std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution) +
-         ", drawing " + shortNumberText(std::round(meshed.gatherWork)) + " elements in all";
+         ", drawing " + shortNumberText(std::round(meshed.gatherEstimate.work)) + " elements in all, keeping " +
+         shortNumberText(std::round(meshed.gatherEstimate.factors)) + " factors" +
+         (meshed.gatherEstimate.iterates(GatherOptions{}) ? "" : " (over its memory: gathered once)");
 }
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.
