@@ -34,9 +34,11 @@ namespace rad {
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
 /// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
-/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class, so 5e8
-/// is some eight seconds on two.
-constexpr double kMaxGatherWork = 5e8;
+/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class (twice
+/// that where hemicubes cull), so 4e9 is one to three minutes on two. Skipping it costs more
+/// at scale: at 5e8, Modern Hall split to 100k triangles (9.2e8) shot to 1e-3 at the full
+/// defaults instead, for 11 minutes; gathered, its whole solve takes 91 s. Split to 300k: 2.8e9.
+constexpr double kMaxGatherWork = 4e9;
 /// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
 /// hemicubes over 7 690 elements in 0.52 s on two).
 constexpr double kGatherSecondsPerPair = 3e-8;

@@ -121,7 +121,7 @@ void decideGather(MeshedScene& s) {
   if (work > kMaxGatherWork)
     std::snprintf(text, sizeof text,
                   "final gather skipped: its hemicubes would draw %.2g vertex-element pairs, more than the "
-                  "%.0e it may cost (about ten seconds); the progressive solution is shown at the vertices "
+                  "%.0e it may cost (a minute or more); the progressive solution is shown at the vertices "
                   "(coarser elements gather: raise solver.max_element_edge)",
                   work, kMaxGatherWork);
   else if (left > kNoTimeLeft)

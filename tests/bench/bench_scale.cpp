@@ -119,6 +119,10 @@ int main(int argc, char** argv) {
     row.print("loading and splitting", loading, loadingPeak);
     for (const rad::StageTime& s : meshed.mesh.stats.stages.list()) row.print(s.name, s.seconds, s.peakMiB);
     row.print("direct light and refinement", meshing - meshed.mesh.stats.stages.total());
+    const rad::GatherEstimate& gather = meshed.gatherEstimate;
+    std::fprintf(stderr, "bench_scale: gather %s: %.3g drawn elements, %.3g factors (%s)\n",
+                 meshed.gather ? "on" : "skipped", gather.work, gather.factors,
+                 gather.iterates(rad::GatherOptions{}) ? "iterated" : "over its memory: gathered once");
     if (!solve) return 0;
     start = Clock::now();
     rad::RadiositySolve solving(meshed);
