@@ -48,7 +48,7 @@ struct MeshedScene {
   bool gather = false;
   /// What the gather would cost: the elements its hemicubes would draw, the factors it would
   /// keep (estimateGather; zeros with the gather off).
-  GatherEstimate gatherEstimate;
+  GatherEstimate gatherEstimate{};
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();

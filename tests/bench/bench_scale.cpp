@@ -21,9 +21,7 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+using Clock = rad::StageTimes::Clock;
 
 /// Triangle (a, b, c) split `levels` times into four by its edge midpoints, into `out`.
 void split(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int levels, std::vector<rad::Polygon>& out) {
@@ -109,11 +107,11 @@ int main(int argc, char** argv) {
     splitTo(scene, target);
     Row row;
     row.triangles = fileTriangles(scene);
-    const double loading = secondsSince(start), loadingPeak = rad::StageTimes::peakMiB();
+    const double loading = rad::StageTimes::since(start), loadingPeak = rad::StageTimes::peakMiB();
     start = Clock::now();
     const rad::Settings settings = rad::resolveSettings(scene, {});
     const rad::MeshedScene meshed = rad::meshScene(std::move(scene), settings);
-    const double meshing = secondsSince(start);
+    const double meshing = rad::StageTimes::since(start);
     row.elements = meshed.mesh.elementCount();
     row.vertices = meshed.mesh.mesh.n_vertices();
     row.print("loading and splitting", loading, loadingPeak);
@@ -128,10 +126,10 @@ int main(int argc, char** argv) {
     rad::RadiositySolve solving(meshed);
     while (solving.step()) {
     }
-    row.print("shooting", secondsSince(start));
+    row.print("shooting", rad::StageTimes::since(start));
     start = Clock::now();
     const rad::Solution solution = solving.bake();
-    row.print(solution.gathered ? "final gather" : "baking", secondsSince(start));
+    row.print(solution.gathered ? "final gather" : "baking", rad::StageTimes::since(start));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_scale: %s\n", e.what());
     return 1;
