@@ -346,7 +346,7 @@ class PieceMesher {
     const bool black = scene_.materials[size_t(surface.material)].reflectance == glm::dvec3(0.0);
     Triangulation2 tri;
     try {
-      tri = black && withinElement(poly, maxEdge_) ? meshPolygonAsIs(poly, maxEdge_, surface.where, piece.meshFace)
+      tri = black && withinElement(poly, maxEdge_) ? meshPolygonAsIs(poly, maxEdge_, surface.where)
                                                    : meshPolygon(poly, maxEdge_, surface.where, piece.meshFace, budget_[size_t(p)]);
     } catch (const InputError&) {
       // A mesh file's face whose outline, cut at contacts and snapped to its neighbours'

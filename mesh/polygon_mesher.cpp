@@ -395,7 +395,7 @@ Triangulation2 triangulatePolygon(const Polygon2& polygon, const std::string& wh
   return extract(cdt);
 }
 
-Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where, bool meshFace) {
+Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where) {
   CDT cdt;
   const RingEdges ringEdges = insertFaceRings(cdt, polygon, where);
   return meshAsIs(cdt, ringEdges, polygon, maxEdge);

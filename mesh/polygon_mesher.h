@@ -58,8 +58,7 @@ bool withinElement(const Polygon2& polygon, double maxEdge);
 /// The polygon meshed as it is: its constrained triangulation, each triangle longer than
 /// maxEdge split by the points of its congruent lattice, no point added on its boundary, no
 /// refinement for shape. For surfaces whose elements' shape shows nothing (black ones).
-Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where,
-                               bool meshFace = false);
+Triangulation2 meshPolygonAsIs(const Polygon2& polygon, double maxEdge, const std::string& where);
 
 /// The vertices Delaunay refinement may make of the polygon before it counts as a sliver: a
 /// multiple of those of an equilateral mesh of its area at maxEdge and of its boundary
