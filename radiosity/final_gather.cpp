@@ -269,6 +269,7 @@ GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, doub
     out.work += double(cube.sorted());
     out.factors += double(f.elements.size());
   }
+  out.culled = cube.culling() == HemicubeCulling::Hidden;
   const double perProbe = double(gathering.size()) / double(probes);
   out.work *= perProbe;
   out.factors *= perProbe;

@@ -34,14 +34,18 @@ namespace rad {
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
 /// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
-/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class (twice
-/// that where hemicubes cull), so 4e9 is one to three minutes on two. Skipping it costs more
+/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class
+/// (kCulledGatherSecondsPerPair where hemicubes cull), so 4e9 is one to four minutes on two. Skipping it costs more
 /// at scale: at 5e8, Modern Hall split to 100k triangles (9.2e8) shot to 1e-3 at the full
 /// defaults instead, for 11 minutes; gathered, its whole solve takes 91 s. Split to 300k: 2.8e9.
 constexpr double kMaxGatherWork = 4e9;
 /// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
 /// hemicubes over 7 690 elements in 0.52 s on two).
 constexpr double kGatherSecondsPerPair = 3e-8;
+/// ...and where the hemicubes cull hidden elements, each drawn pair costs more (the hierarchy's
+/// visits and depth tests): Modern Hall split to 100k and 300k triangles, 9.2e8 and 2.8e9 pairs
+/// in 57 s and 198 s on two cores.
+constexpr double kCulledGatherSecondsPerPair = 1.3e-7;
 /// Gathering vertices whose hemicubes estimateGather renders to estimate the rest's.
 constexpr int kGatherWorkProbes = 16;
 
@@ -89,6 +93,13 @@ struct GatherEstimate {
   double work = 0;
   /// The non-zero factors of all its rows (GatherOptions::memoryBytes keeps them to iterate).
   double factors = 0;
+  /// Whether its hemicubes cull hidden elements (Hemicube::cullingPays).
+  bool culled = false;
+
+  /// The seconds it would take on `workers` cores of this machine class.
+  double seconds(int workers) const {
+    return work * (culled ? kCulledGatherSecondsPerPair : kGatherSecondsPerPair) / double(workers);
+  }
   /// Whether the rows would fit the memory budget: the vertex system is iterated to its own
   /// solution, whatever the progressive start.
   bool iterates(const GatherOptions& options) const {

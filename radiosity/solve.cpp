@@ -106,7 +106,7 @@ void decideGather(MeshedScene& s) {
   options.seed = s.settings.seed;
   const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.base.get(), s.scene.diagonal(), options);
   const double work = estimate.work;
-  const double seconds = work * kGatherSecondsPerPair / workerCount(0), left = timeLeft(s);
+  const double seconds = estimate.seconds(workerCount(0)), left = timeLeft(s);
   s.gather = work <= kMaxGatherWork && !(left > 0 && seconds > kGatherShareOfTimeLeft * left);
   if (s.gather) {
     // Iterated to its own solution, the gather needs only a start: no more than
