@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "mesh/progress.h"
 #include "mesh/spatial_hash.h"
 
@@ -174,9 +175,7 @@ class PieceMesher {
     for (const auto& piece : pieces_)
       for (const auto& ring : piece.rings)
         for (size_t k = 0; k < ring.size(); ++k) lengths.push_back(glm::length(table_[ring[(k + 1) % ring.size()]] - table_[ring[k]]));
-    if (lengths.empty()) return HUGE_VAL;
-    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
-    return lengths[lengths.size() / 2];
+    return median(std::move(lengths));
   }
 
   /// Cuts every ring edge at the ring corners of other pieces lying on it, then into parts

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
+#include "mesh/geometry.h"
 #include "mesh/progress.h"
 #include "mesh/solid_probe.h"
 #include "mesh/spatial_hash.h"
@@ -157,9 +158,7 @@ double medianSide(const std::vector<Box>& boxes) {
     const glm::dvec3 d = b.hi - b.lo;
     sides.push_back(std::max({d.x, d.y, d.z}));
   }
-  if (sides.empty()) return HUGE_VAL;
-  std::nth_element(sides.begin(), sides.begin() + std::ptrdiff_t(sides.size() / 2), sides.end());
-  return sides[sides.size() / 2];
+  return median(std::move(sides));
 }
 
 /// The pieces' boxes in a hash over the scene's box cut into cells × cells × cells cells

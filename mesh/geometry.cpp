@@ -69,6 +69,13 @@ std::vector<std::array<glm::dvec3, 3>> congruentSplit(const std::array<glm::dvec
   return out;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return HUGE_VAL;
+  const auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 double polygonArea(const Polygon& polygon) {
   glm::dvec3 n = newellNormal(polygon.outer);
   double len = glm::length(n);

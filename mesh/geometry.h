@@ -43,6 +43,9 @@ std::vector<std::array<glm::dvec3, 3>> congruentSplit(const std::array<glm::dvec
 /// The area of a planar polygon minus its holes (projected onto its best-fit plane).
 double polygonArea(const Polygon& polygon);
 
+/// The median of the values (the upper one of an even count); HUGE_VAL when there are none.
+double median(std::vector<double> values);
+
 /// The largest distance between two vertices of a ring.
 double ringDiameter(const Ring& ring);
 
