@@ -108,6 +108,8 @@ DirectLight::Probe midpointProbe(const PatchMesh& mesh, int e, TriMesh::VertexHa
   // from neither is the exception this accepts): its light needs no ray.
   if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
     p.visible = &vertices[size_t(a.idx())].visible;
+  else
+    p.clearSight = false;
   return p;
 }
 

@@ -13,6 +13,8 @@
 #include "mesh/geometry.h"
 #include "mesh/parallel.h"
 #include "mesh/progress.h"
+#include "radiosity/clear_sight.h"
+#include "radiosity/element_hierarchy.h"
 #include "radiosity/point_polygon.h"
 #include "radiosity/shooter_samples.h"
 
@@ -20,9 +22,10 @@ namespace rad {
 namespace {
 
 /// The outline of a patch: its elements' edges with no element of the patch on the other
-/// side, chained into one loop, counter-clockwise seen from the lit side as the elements are.
-/// Empty when they do not make one simple loop (a patch with a hole).
-std::vector<glm::dvec3> patchOutline(const PatchMesh& mesh, const Patch& patch) {
+/// side, chained into loops, counter-clockwise seen from the lit side as the elements are (an
+/// outline and, wound the other way, its holes). Empty when they do not make simple loops (a
+/// patch pinched at a vertex).
+std::vector<std::vector<glm::dvec3>> patchLoops(const PatchMesh& mesh, const Patch& patch) {
   const TriMesh& m = mesh.mesh;
   const int id = mesh.patch(patch.elements[0]);
   std::unordered_map<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedge
@@ -32,19 +35,22 @@ std::vector<glm::dvec3> patchOutline(const PatchMesh& mesh, const Patch& patch) 
       if (other.is_valid() && mesh.patch(other.idx()) == id) continue;
       if (!next.emplace(m.from_vertex_handle(h).idx(), h).second) return {};  // pinched
     }
-  std::vector<glm::dvec3> out;
-  if (next.empty()) return out;
-  auto h = next.begin()->second;
-  const int start = m.from_vertex_handle(h).idx();
-  for (size_t steps = 0; steps <= next.size(); ++steps) {
-    out.push_back(PatchMesh::toGlm(m.point(m.from_vertex_handle(h))));
-    const int to = m.to_vertex_handle(h).idx();
-    if (to == start) return out.size() == next.size() ? out : std::vector<glm::dvec3>{};
-    auto it = next.find(to);
-    if (it == next.end()) return {};
-    h = it->second;
+  std::vector<std::vector<glm::dvec3>> loops;
+  while (!next.empty()) {
+    auto h = next.begin()->second;
+    const int start = m.from_vertex_handle(h).idx();
+    std::vector<glm::dvec3>& loop = loops.emplace_back();
+    for (;;) {
+      loop.push_back(PatchMesh::toGlm(m.point(m.from_vertex_handle(h))));
+      next.erase(m.from_vertex_handle(h).idx());
+      const int to = m.to_vertex_handle(h).idx();
+      if (to == start) break;
+      auto it = next.find(to);
+      if (it == next.end()) return {};
+      h = it->second;
+    }
   }
-  return {};
+  return loops;
 }
 
 /// Ray ends are moved this far (relative to the scene size) off their surfaces: off the
@@ -56,6 +62,9 @@ constexpr double kRayOffset = 1e-5;
 /// the scene: about 17 units in the last place).
 constexpr double kRayOffsetOfElement = 1e-3;
 constexpr double kMinRayOffset = 1e-6;
+/// An element closer than this (relative to the scene size) to the space between a point and
+/// a light may block a single-precision ray: the light is not taken to be clear.
+constexpr double kClearSightMargin = 1e-7;
 
 /// The emitting patches, and per surface side (surface·2 + side) their area.
 std::vector<int> emittingPatches(const PatchMesh& mesh, std::vector<double>& sideArea) {
@@ -180,8 +189,17 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
     addLight(mesh, p, std::max(1, int(std::lround(samplesPerEmitter * share))));
   }
   samples_ = int(points_.size());
-  // The occluders: every element.
+  // The occluders: every element, for the rays and for the clear-sight test.
   rays_impl_->build(mesh);
+  std::vector<glm::dvec3> positions, normals;
+  std::vector<uint32_t> indices;
+  for (auto v : mesh.mesh.vertices()) positions.push_back(PatchMesh::toGlm(mesh.mesh.point(v)));
+  for (auto f : mesh.mesh.faces()) {
+    for (auto v : mesh.mesh.fv_range(f)) indices.push_back(uint32_t(v.idx()));
+    normals.push_back(PatchMesh::toGlm(mesh.mesh.normal(f)));
+  }
+  occluders_ = std::make_unique<ElementHierarchy>(positions, indices, normals);
+  clearSight_ = std::make_unique<ClearSight>(*occluders_, kClearSightMargin * sceneSize_);
 }
 
 void DirectLight::addSample(const glm::dvec3& at, const glm::dvec3& normal) {
@@ -194,26 +212,27 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
   LightPolygon light;
   light.normal = patch.normal;
   light.emission = mesh.emission(patch.elements[0]);
-  light.outline = patchOutline(mesh, patch);
-  if (!light.outline.empty()) {
-    light.first = int(points_.size());
+  light.first = int(points_.size());
+  light.outlines = patchLoops(mesh, patch);
+  if (light.outlines.size() == 1) {
     for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
-    light.count = int(points_.size()) - light.first;
-    lights_.push_back(std::move(light));
-    return;
+  } else {
+    // A patch round a hole (or pinched): each element has its share of the samples, the
+    // centroids of an m×m split of the triangle; pinched, the elements are its outlines.
+    const bool pinched = light.outlines.empty();
+    for (int e : patch.elements) {
+      const auto c = mesh.corners(e);
+      if (pinched) light.outlines.emplace_back(c.begin(), c.end());
+      const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
+      for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, light.normal);
+    }
   }
-  // No simple outline (a patch round a hole): each element is a light with its own share of
-  // the samples, the centroids of an m×m split of the triangle.
-  for (int e : patch.elements) {
-    LightPolygon part = light;
-    const auto c = mesh.corners(e);
-    part.outline.assign(c.begin(), c.end());
-    part.first = int(points_.size());
-    const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
-    for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, part.normal);
-    part.count = int(points_.size()) - part.first;
-    lights_.push_back(std::move(part));
-  }
+  light.count = int(points_.size()) - light.first;
+  std::vector<glm::dvec3> corners;
+  for (const auto& o : light.outlines) corners.insert(corners.end(), o.begin(), o.end());
+  light.hull = planarConvexHull(corners, light.normal);
+  for (glm::dvec3& corner : light.hull) corner += light.normal * (kRayOffset * sceneSize_);
+  lights_.push_back(std::move(light));
 }
 
 DirectLight::~DirectLight() = default;
@@ -293,6 +312,11 @@ struct DirectLight::SeenLight {
     for (size_t k = 0; k < above.size(); ++k) sum += visible[k] ? weight[k] : 0.0;
     return all > 0 ? sum / all : 0.0;
   }
+  /// Every sample visible, as if each were tested (nothing stands between point and light).
+  void seeWhole() {
+    visible.assign(above.size(), 1);
+    stride = 1;
+  }
   /// Whether some tested samples are visible and some not (the point is in its penumbra).
   bool partial() const {
     const auto first = visible.begin(), last = visible.end();
@@ -302,8 +326,9 @@ struct DirectLight::SeenLight {
 
 double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
   const LightPolygon& light = lights_[t];
-  if (glm::dot(light.normal, p - light.outline[0]) <= 0) return 0;  // behind the emitter
-  const double F = pointPolygonFormFactor(p, n, light.outline);
+  if (glm::dot(light.normal, p - light.outlines[0][0]) <= 0) return 0;  // behind the emitter
+  const double F = light.outlines.size() == 1 ? pointPolygonFormFactor(p, n, light.outlines[0])
+                                              : pointRegionFormFactor(p, n, light.outlines);
   return F > 0 ? F : 0;
 }
 
@@ -364,7 +389,12 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   double shown = 0;
   for (size_t t = 0; t < lights_.size(); ++t) {
     if (seen[t].above.empty()) continue;
-    test(probe, p, stride(t, open), seen[t], raysCast);
+    const size_t s = stride(t, open);
+    if (probe.clearSight && !probe.visible && seen[t].above.size() / s >= size_t(kClearSightRays) &&
+        clearSight_->clear(p, lights_[t].hull))
+      seen[t].seeWhole();
+    else
+      test(probe, p, s, seen[t], raysCast);
     shown += lum[t] * seen[t].seen();
   }
   // In a shadow the light that arrives is not what the open sky would bring: a light in

@@ -13,6 +13,9 @@
 
 namespace rad {
 
+class ClearSight;
+class ElementHierarchy;
+
 /// Sample points per emitting surface side (at most kMaxLightSamples over all): each emitting
 /// patch gets its share by area (at least one), spread over it in strata of equal area
 /// (patchSamples).
@@ -29,12 +32,19 @@ constexpr int kMinRaysPerLight = 16;
 /// Above this many emitting patches, direct light by rays costs more than it brings (a scene
 /// where most surfaces glow has no sharp shadows): the hemicubes' values are shown instead.
 constexpr int kMaxRayEmitterPatches = 256;
+/// A light a point would cast at least this many rays to is first tested whole (ClearSight):
+/// when nothing stands between them, every sample is visible and no ray is cast.
+constexpr int kClearSightRays = 32;
 
 /// One emitting patch seen from the vertices: its outline (counter-clockwise seen from its
-/// lit side), and its samples [first, first + count). A patch whose elements do not make one
-/// simple outline contributes one light per element instead.
+/// lit side) and the outlines of its holes (wound the other way), or, pinched at a vertex, its
+/// elements'; and its samples [first, first + count). A lamp's ring round its holder is one
+/// light: the lights share a point's rays light by light, so it costs what one light does.
 struct LightPolygon {
-  std::vector<glm::dvec3> outline;
+  std::vector<std::vector<glm::dvec3>> outlines;
+  /// The outline's convex hull moved off the emitter as the ray ends are: every ray to the
+  /// light's samples lies in the hull of its start and this (ClearSight).
+  std::vector<glm::dvec3> hull;
   glm::dvec3 normal{0.0}, emission{0.0};
   int first = 0, count = 0;
 };
@@ -82,6 +92,9 @@ class DirectLight {
     /// If set, the samples visible from the point are taken to be these, and no ray is cast
     /// (between two vertices that see the same samples).
     const std::vector<uint64_t>* visible = nullptr;
+    /// Whether to look for a clear sight of each light before casting rays (ClearSight): not
+    /// between two vertices that see different samples, in a penumbra, where it seldom pays.
+    bool clearSight = true;
   };
   /// The direct light at each probe, on all workers.
   std::vector<VertexLight> lightAt(const std::vector<Probe>& probes);
@@ -108,6 +121,8 @@ class DirectLight {
 
   struct Rays;
   std::unique_ptr<Rays> rays_impl_;
+  std::unique_ptr<ElementHierarchy> occluders_;  // the elements, for clearSight_
+  std::unique_ptr<ClearSight> clearSight_;
   std::vector<LightPolygon> lights_;
   std::vector<glm::dvec3> onLight_;  // sample points
   std::vector<glm::dvec3> points_;   // the same, moved off their emitter: where rays end

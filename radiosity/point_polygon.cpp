@@ -27,8 +27,9 @@ std::vector<glm::dvec3> clipToHemisphere(const glm::dvec3& x, const glm::dvec3& 
 
 namespace {
 
-/// Lambert's formula over a polygon wholly above x's tangent plane.
-double lambert(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& p) {
+/// Lambert's contour sum Σᵢ γᵢ n·(Rᵢ×Rᵢ₊₁)/|Rᵢ×Rᵢ₊₁| over a polygon wholly above x's tangent
+/// plane, signed by the polygon's winding.
+double contourSum(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& p) {
   double sum = 0;
   for (size_t i = 0; i < p.size(); ++i) {
     glm::dvec3 r0 = p[i] - x, r1 = p[(i + 1) % p.size()] - x;
@@ -38,21 +39,33 @@ double lambert(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::
     double gamma = std::atan2(len, glm::dot(r0, r1));
     sum += gamma * glm::dot(n, c) / len;
   }
-  return std::abs(sum) / (2 * M_PI);
+  return sum;
+}
+
+/// The contour sum of the part of the polygon above x's tangent plane.
+double clippedContourSum(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& polygon) {
+  // Wholly above the horizon or wholly below it, as most lights are from most points, the
+  // polygon needs no clipping (the clipped copy would be the same corners in the same order).
+  size_t above = 0;
+  for (const glm::dvec3& a : polygon) above += glm::dot(n, a - x) >= 0;
+  if (above == 0 || polygon.size() < 3) return 0.0;
+  if (above == polygon.size()) return contourSum(x, n, polygon);
+  const std::vector<glm::dvec3> p = clipToHemisphere(x, n, polygon);
+  return p.size() < 3 ? 0.0 : contourSum(x, n, p);
 }
 
 }  // namespace
 
 double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
                               const std::vector<glm::dvec3>& polygon) {
-  // Wholly above the horizon or wholly below it, as most lights are from most points, the
-  // polygon needs no clipping (the clipped copy would be the same corners in the same order).
-  size_t above = 0;
-  for (const glm::dvec3& a : polygon) above += glm::dot(n, a - x) >= 0;
-  if (above == 0 || polygon.size() < 3) return 0.0;
-  if (above == polygon.size()) return lambert(x, n, polygon);
-  const std::vector<glm::dvec3> p = clipToHemisphere(x, n, polygon);
-  return p.size() < 3 ? 0.0 : lambert(x, n, p);
+  return std::abs(clippedContourSum(x, n, polygon)) / (2 * M_PI);
+}
+
+double pointRegionFormFactor(const glm::dvec3& x, const glm::dvec3& n,
+                             const std::vector<std::vector<glm::dvec3>>& loops) {
+  double sum = 0;
+  for (const auto& loop : loops) sum += clippedContourSum(x, n, loop);
+  return std::abs(sum) / (2 * M_PI);
 }
 
 }  // namespace rad

@@ -13,4 +13,9 @@ namespace rad {
 double pointPolygonFormFactor(const glm::dvec3& x, const glm::dvec3& n,
                               const std::vector<glm::dvec3>& polygon);
 
+/// The same for a planar region bounded by several loops (an outline and its holes, the holes
+/// wound the other way): the contour integral is a sum over the loops, each clipped alone.
+double pointRegionFormFactor(const glm::dvec3& x, const glm::dvec3& n,
+                             const std::vector<std::vector<glm::dvec3>>& loops);
+
 }  // namespace rad

@@ -10,6 +10,7 @@
 
 #include "mesh/color.h"
 #include "radiosity/direct_light.h"
+#include "radiosity/point_polygon.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"
 
@@ -37,11 +38,18 @@ MeshedScene meshed(const std::string& path) {
 }
 
 /// The direct light at every vertex of `mesh` by `raysPerPoint`; the rays cast in `rays`.
+/// Every light is tested by rays (no clear sight), so that the rays count what sharing saves.
 std::vector<glm::dvec3> directLight(const MeshedScene& s, int raysPerPoint, long& rays) {
   DirectLight light(s.mesh, s.scene.diagonal(), kDefaultLightSamples, raysPerPoint);
-  light.update(s.mesh);
+  std::vector<DirectLight::Probe> probes;
+  for (auto v : s.mesh.mesh.vertices()) {
+    probes.push_back(vertexProbe(s.mesh, v));
+    probes.back().clearSight = false;
+  }
+  std::vector<glm::dvec3> out;
+  for (const VertexLight& v : light.lightAt(probes)) out.push_back(v.radiosity);
   rays = light.rays();
-  return light.radiosity();
+  return out;
 }
 
 TEST(DirectLightTest, ALoneLightCastsEverySample) {
@@ -71,6 +79,74 @@ TEST(DirectLightTest, SeveralLightsShareTheRaysAndShowTheSameLight) {
   EXPECT_LE(double(shared), kSharedRaysCost * double(every));
   EXPECT_LE(rms, kSharedRaysRms);
   EXPECT_LE(worst, kSharedRaysWorst);
+}
+
+/// The floor's vertices of tests/data/ring_lamp.json as probes (an empty room, a square lamp
+/// round a square hole just below its ceiling).
+std::vector<DirectLight::Probe> floorProbes(const MeshedScene& s) {
+  std::vector<DirectLight::Probe> out;
+  for (auto v : s.mesh.mesh.vertices()) {
+    const DirectLight::Probe probe = vertexProbe(s.mesh, v);
+    if (probe.point.y == 0 && probe.normal.y > 0.99) out.push_back(probe);
+  }
+  return out;
+}
+
+TEST(DirectLightTest, ARingLampIsOneLightItsOutlineAndItsHole) {
+  const MeshedScene s = meshed(test::kData + "ring_lamp.json");
+  DirectLight light(s.mesh, s.scene.diagonal());
+  ASSERT_EQ(light.lights().size(), 1u);
+  EXPECT_EQ(light.lights()[0].outlines.size(), 2u);
+  // Every floor vertex sees the whole lamp: ρ·E·F, F the exact factor of the ring, which is
+  // the sum of its elements' factors.
+  std::vector<int> lamp;
+  for (int e = 0; e < s.mesh.elementCount(); ++e)
+    if (s.mesh.emission(e) != glm::dvec3(0.0)) lamp.push_back(e);
+  const std::vector<DirectLight::Probe> probes = floorProbes(s);
+  ASSERT_GT(probes.size(), 100u);
+  const std::vector<VertexLight> lit = light.lightAt(probes);
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const glm::dvec3 p = offSurface(probes[k], s.scene.diagonal());
+    double F = 0;
+    for (int e : lamp) {
+      const auto c = s.mesh.corners(e);
+      F += pointPolygonFormFactor(p, probes[k].normal, {c.begin(), c.end()});
+    }
+    const glm::dvec3 expected = probes[k].rho * light.lights()[0].emission * F;
+    ASSERT_NEAR(lit[k].radiosity.x, expected.x, 1e-9 * expected.x) << "floor vertex " << k;
+  }
+}
+
+TEST(DirectLightTest, WhatAPointSeesWholeCastsNoRayAndShowsWhatRaysShow) {
+  // Nothing stands between the floor and the lamp: the clear-sight test finds that without a
+  // ray, and the light is what every ray would have shown, bit for bit.
+  const MeshedScene s = meshed(test::kData + "ring_lamp.json");
+  std::vector<DirectLight::Probe> probes = floorProbes(s);
+  DirectLight clear(s.mesh, s.scene.diagonal()), rays(s.mesh, s.scene.diagonal());
+  const std::vector<VertexLight> a = clear.lightAt(probes);
+  for (DirectLight::Probe& probe : probes) probe.clearSight = false;
+  const std::vector<VertexLight> b = rays.lightAt(probes);
+  EXPECT_EQ(clear.rays(), 0);
+  EXPECT_GE(rays.rays(), long(probes.size()) * kMinRaysPerLight);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].radiosity, b[k].radiosity) << "floor vertex " << k;
+    EXPECT_EQ(a[k].visible, b[k].visible) << "floor vertex " << k;
+  }
+  // The four lamps' room, a block casting their penumbrae: clear sight or not, the same light.
+  const MeshedScene four = meshed(test::kData + "four_lamps.json");
+  std::vector<DirectLight::Probe> all;
+  for (auto v : four.mesh.mesh.vertices()) all.push_back(vertexProbe(four.mesh, v));
+  DirectLight withClear(four.mesh, four.scene.diagonal()), withRays(four.mesh, four.scene.diagonal());
+  const std::vector<VertexLight> c = withClear.lightAt(all);
+  for (DirectLight::Probe& probe : all) probe.clearSight = false;
+  const std::vector<VertexLight> d = withRays.lightAt(all);
+  size_t same = 0;
+  for (size_t k = 0; k < c.size(); ++k) same += c[k].radiosity == d[k].radiosity;
+  std::printf("four lamps: %ld rays with clear sight, %ld without; %zu of %zu vertices bit for bit\n",
+              withClear.rays(), withRays.rays(), same, c.size());
+  EXPECT_EQ(same, c.size());
+  EXPECT_LT(withClear.rays(), withRays.rays());
 }
 
 }  // namespace

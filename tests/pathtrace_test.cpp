@@ -62,7 +62,9 @@ int outside(const glm::dvec3& exact, const PointEstimate& e, const glm::dvec3& a
     const double z = std::abs(e.B[c] - exact[c]) / e.standardError[c];
     EXPECT_LE(z, kBias) << "channel " << c << " at (" << at.x << ", " << at.y << ", " << at.z
                         << "): B " << e.B[c] << ", exact " << exact[c] << ", SE " << e.standardError[c];
-    if (exact[c] > 0) EXPECT_LT(e.standardError[c] / exact[c], kMaxRelativeSE);
+    if (exact[c] > 0) {
+      EXPECT_LT(e.standardError[c] / exact[c], kMaxRelativeSE);
+    }
     count += z > kSigmas;
   }
   return count;

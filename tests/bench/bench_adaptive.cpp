@@ -150,9 +150,9 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < batch.size(); ++k) {
       double open = 0;
       for (const auto& t : exact.lights())
-        if (glm::dot(t.normal, batch[k].x - t.outline[0]) > 0)
-          open += luminance(batch[k].rho * t.emission) *
-                  pointPolygonFormFactor(batch[k].x, batch[k].normal, t.outline);
+        if (glm::dot(t.normal, batch[k].x - t.outlines[0][0]) > 0)
+          for (const auto& outline : t.outlines)
+            open += luminance(batch[k].rho * t.emission) * pointPolygonFormFactor(batch[k].x, batch[k].normal, outline);
       batch[k].direct = luminance(direct[k].radiosity);
       if (open > 0 && batch[k].direct > kPenumbraLow * open && batch[k].direct < kPenumbraHigh * open &&
           int(points.size()) < wanted)
