@@ -85,11 +85,17 @@ std::vector<int> lightOfSamples(const DirectLight& light) {
   return lightOf;
 }
 
-/// Elements that may be refined: larger than the floor, and not black (black shows no light).
-std::vector<int> refinable(const PatchMesh& mesh, const AdaptiveOptions& options) {
+/// Elements that may be refined (all, or those `among`): larger than the floor, and not black
+/// (black shows no light).
+std::vector<int> refinable(const PatchMesh& mesh, const AdaptiveOptions& options, const std::vector<int>* among) {
   std::vector<int> out;
-  for (int e = 0; e < mesh.elementCount(); ++e)
+  auto consider = [&](int e) {
     if (longestEdge(mesh, e) > options.minElementEdge && mesh.reflectance(e) != glm::dvec3(0.0)) out.push_back(e);
+  };
+  if (among)
+    std::for_each(among->begin(), among->end(), consider);
+  else
+    for (int e = 0; e < mesh.elementCount(); ++e) consider(e);
   return out;
 }
 
@@ -185,11 +191,11 @@ struct RefineTest {
 
 std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
                                   const DisplayEstimate& estimate, const AdaptiveOptions& options,
-                                  MidpointLight& midpoints) {
+                                  MidpointLight& midpoints, const std::vector<int>* among) {
   std::vector<int> out;
   if (!light.enabled()) return out;
   RAD_CHECK(light.vertices().size() == mesh.mesh.n_vertices());
-  const std::vector<int> candidates = refinable(mesh, options);
+  const std::vector<int> candidates = refinable(mesh, options, among);
   lightMidpoints(mesh, light, candidates, midpoints);
   const RefineTest needsRefining{mesh, light.vertices(), midpoints, lightOfSamples(light), estimate.ambient,
                                  options.exposure > 0 ? options.exposure : estimate.exposure, options.contrast};
@@ -201,11 +207,17 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
 namespace {
 
 /// Bisects the marked elements; each new vertex is the midpoint of the edge it split, where
-/// the light is known: that light, by new vertex, moved out of `midpoints`.
+/// the light is known: that light, by new vertex, moved out of `midpoints`. `changed`: the
+/// elements round the new vertices (every other element is as it was).
 std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked,
-                                            MidpointLight& midpoints) {
+                                            MidpointLight& midpoints, std::vector<int>& changed) {
   std::vector<EdgeSplit> splits;
   bisectElements(mesh, marked, &splits);
+  changed.clear();
+  for (const auto& s : splits)
+    for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(s.vertex))) changed.push_back(f.idx());
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   std::unordered_map<int, VertexLight> known;
   for (const auto& s : splits) {
     auto it = midpoints.find(edgeKey(s.from, s.to));
@@ -237,12 +249,15 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   MidpointLight midpoints;
   stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
   StageProgress progress("refinement: rounds (at most)", size_t(options.maxRounds));
+  // After the first round only the elements bisection changed can be marked: the others'
+  // corners and midpoints are as they were, and they were not marked then.
+  std::vector<int> changed;
   for (int round = 0; round < options.maxRounds && light.enabled() && !capReached(mesh, options); ++round) {
     progress.update(size_t(round));
-    std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints);
+    std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints, round ? &changed : nullptr);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
-    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints);
+    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed);
     light.update(mesh, &known);
     ++stats.rounds;
   }

@@ -50,10 +50,11 @@ using MidpointLight = std::unordered_map<uint64_t, VertexLight>;
 /// - two of their vertices see different samples on an emitter, and the light through the
 ///   samples one sees and the other does not is more than options.contrast on display
 ///   (a shadow boundary crossing the element).
-/// Midpoints are computed by rays once and kept in `midpoints`.
+/// Midpoints are computed by rays once and kept in `midpoints`. With `among`, only those
+/// elements are looked at (the others are as they were when last looked at).
 std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
                                   const DisplayEstimate& shown, const AdaptiveOptions& options,
-                                  MidpointLight& midpoints);
+                                  MidpointLight& midpoints, const std::vector<int>* among = nullptr);
 
 /// Refines the mesh until no element needs it (or maxRounds): each round bisects the marked
 /// elements (conforming, mesh/refine.h) and casts rays from the new vertices only.

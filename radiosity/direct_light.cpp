@@ -23,31 +23,32 @@ namespace {
 
 /// The outline of a patch: its elements' edges with no element of the patch on the other
 /// side, chained into loops, counter-clockwise seen from the lit side as the elements are (an
-/// outline and, wound the other way, its holes). Empty when they do not make simple loops (a
-/// patch pinched at a vertex).
+/// outline and, wound the other way, its holes). Where the patch is pinched at a vertex (two
+/// boundary edges leave it), the loops pass it twice; Lambert's contour sum over the loops is
+/// the patch's all the same, as it is a sum over the boundary's edges.
 std::vector<std::vector<glm::dvec3>> patchLoops(const PatchMesh& mesh, const Patch& patch) {
   const TriMesh& m = mesh.mesh;
   const int id = mesh.patch(patch.elements[0]);
-  std::unordered_map<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedge
+  std::unordered_multimap<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedges
   for (int e : patch.elements)
     for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
       auto other = m.opposite_face_handle(h);
       if (other.is_valid() && mesh.patch(other.idx()) == id) continue;
-      if (!next.emplace(m.from_vertex_handle(h).idx(), h).second) return {};  // pinched
+      next.emplace(m.from_vertex_handle(h).idx(), h);
     }
   std::vector<std::vector<glm::dvec3>> loops;
   while (!next.empty()) {
-    auto h = next.begin()->second;
-    const int start = m.from_vertex_handle(h).idx();
+    auto at = next.begin();
+    const int start = at->first;
     std::vector<glm::dvec3>& loop = loops.emplace_back();
     for (;;) {
+      const auto h = at->second;
+      next.erase(at);
       loop.push_back(PatchMesh::toGlm(m.point(m.from_vertex_handle(h))));
-      next.erase(m.from_vertex_handle(h).idx());
       const int to = m.to_vertex_handle(h).idx();
       if (to == start) break;
-      auto it = next.find(to);
-      if (it == next.end()) return {};
-      h = it->second;
+      at = next.find(to);
+      if (at == next.end()) return {};  // not closed: no outline
     }
   }
   return loops;
@@ -218,11 +219,12 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
     for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
   } else {
     // A patch round a hole (or pinched): each element has its share of the samples, the
-    // centroids of an m×m split of the triangle; pinched, the elements are its outlines.
-    const bool pinched = light.outlines.empty();
+    // centroids of an m×m split of the triangle; without closed loops, the elements are its
+    // outlines.
+    const bool open = light.outlines.empty();
     for (int e : patch.elements) {
       const auto c = mesh.corners(e);
-      if (pinched) light.outlines.emplace_back(c.begin(), c.end());
+      if (open) light.outlines.emplace_back(c.begin(), c.end());
       const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
       for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, light.normal);
     }
