@@ -232,8 +232,8 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
   light.count = int(points_.size()) - light.first;
   std::vector<glm::dvec3> corners;
   for (const auto& o : light.outlines) corners.insert(corners.end(), o.begin(), o.end());
-  light.hull = planarConvexHull(corners, light.normal);
-  for (glm::dvec3& corner : light.hull) corner += light.normal * (kRayOffset * sceneSize_);
+  light.hull = light.rayHull = planarConvexHull(corners, light.normal);
+  for (glm::dvec3& corner : light.rayHull) corner += light.normal * (kRayOffset * sceneSize_);
   lights_.push_back(std::move(light));
 }
 
@@ -295,29 +295,25 @@ size_t sampleStride(size_t above, double share, int raysPerPoint) {
 
 }  // namespace
 
-/// One light as a point sees it: its samples above the point's horizon, each weighted by its
-/// own differential factor cosθ·cosθ'/r² (samples stand for equal areas, so that near a light
-/// its close parts count more), and which are visible. Every stride-th sample is tested by a
-/// ray; consecutive samples are neighbouring strata (patchSamples bisects by area), so each
-/// tested one stands for the stride of them from it.
+/// One light as a point sees it: its samples above the point's horizon and which are visible.
+/// Every stride-th sample is tested by a ray; consecutive samples are neighbouring strata
+/// (patchSamples bisects by area), so each tested one stands for the stride of them from it.
+/// A light seen partly counts each visible sample by its own differential factor
+/// cosθ·cosθ'/r² (samples stand for equal areas, so that near a light its close parts count
+/// more); those are weighed only then, as a light seen whole or not at all needs no weights.
 struct DirectLight::SeenLight {
   std::vector<int> above;
-  std::vector<double> weight;
   std::vector<char> visible;  ///< per sample above, tested or taken from the tested one before it
-  double all = 0;             ///< the weights' sum
+  std::vector<double> weight; ///< per sample above, once weighed
   double F = 0;               ///< the light's exact unoccluded factor
+  double share = -1;          ///< the visible share of its weight, once found (-1: not yet)
   size_t stride = 0;          ///< 0: nothing tested yet
 
-  /// The visible share of the light's weight.
-  double seen() const {
-    double sum = 0;
-    for (size_t k = 0; k < above.size(); ++k) sum += visible[k] ? weight[k] : 0.0;
-    return all > 0 ? sum / all : 0.0;
-  }
   /// Every sample visible, as if each were tested (nothing stands between point and light).
   void seeWhole() {
     visible.assign(above.size(), 1);
     stride = 1;
+    share = -1;
   }
   /// Whether some tested samples are visible and some not (the point is in its penumbra).
   bool partial() const {
@@ -334,22 +330,56 @@ double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, s
   return F > 0 ? F : 0;
 }
 
+namespace {
+
+/// A light is taken to lie wholly above a point's horizon, and the point wholly in front of
+/// it, when every corner of its hull is above by this share of its distance at least: then
+/// every sample (inside the hull) is, whatever the rounding.
+constexpr double kWhollyAbove = 1e-9;
+
+}  // namespace
+
 void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const {
   out.above.clear(), out.weight.clear(), out.visible.clear();
-  out.all = 0, out.stride = 0;
+  out.stride = 0, out.share = -1;
   const LightPolygon& light = lights_[t];
   out.F = unoccludedFactor(p, n, t);
   if (!(out.F > 0)) return;
-  for (int j = light.first; j < light.first + light.count; ++j) {
-    const glm::dvec3 d = onLight_[size_t(j)] - p;
-    const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(light.normal, d);
-    if (cosHere <= 0 || cosThere <= 0) continue;  // below the horizon, or behind the light
-    out.above.push_back(j);
-    out.weight.push_back(cosHere * cosThere / (r2 * r2));
-    out.all += out.weight.back();
+  bool whole = true;
+  for (const glm::dvec3& c : light.hull) {
+    const glm::dvec3 d = c - p;
+    const double margin = kWhollyAbove * glm::length(d);
+    whole = whole && glm::dot(n, d) > margin && -glm::dot(light.normal, d) > margin;
   }
-  if (!(out.all > 0)) out.above.clear(), out.weight.clear();
+  for (int j = light.first; j < light.first + light.count; ++j) {
+    if (!whole) {
+      const glm::dvec3 d = onLight_[size_t(j)] - p;
+      if (glm::dot(n, d) <= 0 || -glm::dot(light.normal, d) <= 0) continue;  // below the horizon, or behind the light
+    }
+    out.above.push_back(j);
+  }
   out.visible.assign(out.above.size(), 0);
+}
+
+double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& light) const {
+  if (light.share >= 0) return light.share;
+  const auto first = light.visible.begin(), last = light.visible.end();
+  if (std::find(first, last, 0) == last) return light.share = 1;  // the weighted sum over all, exactly
+  if (std::find(first, last, 1) == last) return light.share = 0;
+  if (light.weight.empty()) {
+    const LightPolygon& lamp = lights_[t];
+    for (int j : light.above) {
+      const glm::dvec3 d = onLight_[size_t(j)] - p;
+      const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(lamp.normal, d);
+      light.weight.push_back(cosHere * cosThere / (r2 * r2));
+    }
+  }
+  double sum = 0, all = 0;
+  for (size_t k = 0; k < light.above.size(); ++k) {
+    all += light.weight[k];
+    sum += light.visible[k] ? light.weight[k] : 0.0;
+  }
+  return light.share = all > 0 ? sum / all : 0.0;
 }
 
 void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light,
@@ -364,8 +394,10 @@ void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, S
   samplesVisible(probe, p, samples, visible, raysCast);
   for (size_t i = 0; i < at.size(); ++i) light.visible[at[i]] = visible[i];
   light.stride = stride;
-  for (size_t k = 0; k < light.above.size(); ++k)
-    if (k % stride) light.visible[k] = light.visible[k - k % stride];
+  light.share = -1;
+  if (stride > 1)
+    for (size_t k = 0; k < light.above.size(); ++k)
+      if (k % stride) light.visible[k] = light.visible[k - k % stride];
 }
 
 VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
@@ -373,7 +405,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   out.visible.assign(size_t((samples_ + 63) / 64), 0);
   out.weight.assign(lights_.size(), 0.0f);
   if (probe.rho == glm::dvec3(0.0)) return out;  // black: nothing to show
-  const glm::dvec3 p = offSurface(probe, sceneSize_);
+  const glm::dvec3 p = offSurface(probe, sceneSize_), &n = probe.normal;
   // Each light's samples above the horizon and its unoccluded light first: the lights share
   // the point's rays by what each brings (a probe given its visibility casts none).
   thread_local std::vector<SeenLight> seen;  // reused from probe to probe: no allocation
@@ -381,7 +413,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
   seen.resize(lights_.size()), lum.assign(lights_.size(), 0.0);
   double open = 0;
   for (size_t t = 0; t < lights_.size(); ++t) {
-    samplesAbove(p, probe.normal, t, seen[t]);
+    samplesAbove(p, n, t, seen[t]);
     if (!seen[t].above.empty()) open += lum[t] = luminance(lights_[t].emission) * seen[t].F;
   }
   if (!(open > 0)) return out;
@@ -393,23 +425,23 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
     if (seen[t].above.empty()) continue;
     const size_t s = stride(t, open);
     if (probe.clearSight && !probe.visible && seen[t].above.size() / s >= size_t(kClearSightRays) &&
-        clearSight_->clear(p, lights_[t].hull))
+        clearSight_->clear(p, lights_[t].rayHull))
       seen[t].seeWhole();
     else
       test(probe, p, s, seen[t], raysCast);
-    shown += lum[t] * seen[t].seen();
+    shown += lum[t] * seenShare(p, n, t, seen[t]);
   }
   // In a shadow the light that arrives is not what the open sky would bring: a light in
   // whose penumbra the point lies is tested again for its share of what is shown.
   for (size_t t = 0; t < lights_.size() && shown > 0; ++t)
     if (seen[t].stride > 1 && seen[t].partial()) test(probe, p, stride(t, shown), seen[t], raysCast);
   for (size_t t = 0; t < lights_.size(); ++t) {
-    const SeenLight& light = seen[t];
+    SeenLight& light = seen[t];
     if (light.above.empty()) continue;
     for (size_t k = 0; k < light.above.size(); ++k)
       if (light.visible[k]) out.visible[size_t(light.above[k] / 64)] |= uint64_t(1) << (light.above[k] % 64);
     const glm::dvec3 full = probe.rho * lights_[t].emission * light.F;
-    out.radiosity += full * light.seen();
+    out.radiosity += full * seenShare(p, n, t, light);
     out.weight[t] = float(luminance(full) / double(light.above.size()));  // the mean sample's share
   }
   return out;

@@ -42,9 +42,9 @@ constexpr int kClearSightRays = 32;
 /// light: the lights share a point's rays light by light, so it costs what one light does.
 struct LightPolygon {
   std::vector<std::vector<glm::dvec3>> outlines;
-  /// The outline's convex hull moved off the emitter as the ray ends are: every ray to the
-  /// light's samples lies in the hull of its start and this (ClearSight).
-  std::vector<glm::dvec3> hull;
+  /// The outlines' convex hull, and the same moved off the emitter as the ray ends are: every
+  /// ray to the light's samples lies in the hull of its start and this (ClearSight).
+  std::vector<glm::dvec3> hull, rayHull;
   glm::dvec3 normal{0.0}, emission{0.0};
   int first = 0, count = 0;
 };
@@ -113,6 +113,9 @@ class DirectLight {
   /// Light t seen from p with normal n into `out`: its samples above the horizon, none tested
   /// yet.
   void samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const;
+  /// The visible share of light t's weight from p with normal n (weighing its samples if it
+  /// is seen in part).
+  double seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& light) const;
   /// Tests every stride-th of the light's samples from p (those not tested yet), unless it
   /// was tested as finely already.
   void test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light, long& raysCast) const;
