@@ -7,6 +7,12 @@
 #include <glm/geometric.hpp>
 
 namespace rad {
+namespace {
+
+/// A base edge seen from the apex under an angle below this (radians) bounds no side plane.
+constexpr double kShortestEdge = 1e-9;
+
+}  // namespace
 
 bool ClearSight::pyramid(const glm::dvec3& apex, const std::vector<glm::dvec3>& base,
                          std::vector<Plane>& planes) const {
@@ -14,11 +20,10 @@ bool ClearSight::pyramid(const glm::dvec3& apex, const std::vector<glm::dvec3>& 
   if (base.size() < 3) return false;
   // The base's plane by Newell's sum (any convex polygon, either way round), facing the apex.
   glm::dvec3 normal(0.0), centroid(0.0);
-  for (size_t i = 0; i < base.size(); ++i) {
-    normal += glm::cross(base[i], base[(i + 1) % base.size()]);
-    centroid += base[i];
-  }
+  for (const glm::dvec3& corner : base) centroid += corner;
   centroid /= double(base.size());
+  for (size_t i = 0; i < base.size(); ++i)  // relative to the centroid: exact far from the origin too
+    normal += glm::cross(base[i] - centroid, base[(i + 1) % base.size()] - centroid);
   const double length = glm::length(normal);
   if (!(length > 0)) return false;
   normal /= length;
@@ -26,11 +31,13 @@ bool ClearSight::pyramid(const glm::dvec3& apex, const std::vector<glm::dvec3>& 
   if (!(std::abs(height) > margin_)) return false;
   if (height < 0) normal = -normal;
   planes.push_back({-normal, glm::dot(-normal, centroid)});
-  // A side plane through the apex and each edge, facing away from the base's centroid.
+  // A side plane through the apex and each edge, facing away from the base's centroid. An
+  // edge too short for its plane's direction to mean anything gets none (a larger pyramid).
   for (size_t i = 0; i < base.size(); ++i) {
-    glm::dvec3 n = glm::cross(base[i] - apex, base[(i + 1) % base.size()] - apex);
+    const glm::dvec3 a = base[i] - apex, b = base[(i + 1) % base.size()] - apex;
+    glm::dvec3 n = glm::cross(a, b);
     const double l = glm::length(n);
-    if (!(l > 0)) continue;  // a repeated corner
+    if (!(l > kShortestEdge * glm::length(a) * glm::length(b))) continue;
     n /= l;
     if (glm::dot(n, centroid - apex) > 0) n = -n;
     planes.push_back({n, glm::dot(n, apex)});

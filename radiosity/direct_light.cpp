@@ -64,8 +64,10 @@ constexpr double kRayOffset = 1e-5;
 constexpr double kRayOffsetOfElement = 1e-3;
 constexpr double kMinRayOffset = 1e-6;
 /// An element closer than this (relative to the scene size) to the space between a point and
-/// a light may block a single-precision ray: the light is not taken to be clear.
-constexpr double kClearSightMargin = 1e-7;
+/// a light may block a single-precision ray (rounding of origin, direction and corners in
+/// coordinates normalised to the scene): the light is not taken to be clear. Below
+/// kMinRayOffset, so that the surface a point lies on stays apart.
+constexpr double kClearSightMargin = 3e-7;
 
 /// The emitting patches, and per surface side (surface·2 + side) their area.
 std::vector<int> emittingPatches(const PatchMesh& mesh, std::vector<double>& sideArea) {
@@ -197,7 +199,11 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
   for (auto v : mesh.mesh.vertices()) positions.push_back(PatchMesh::toGlm(mesh.mesh.point(v)));
   for (auto f : mesh.mesh.faces()) {
     for (auto v : mesh.mesh.fv_range(f)) indices.push_back(uint32_t(v.idx()));
-    normals.push_back(PatchMesh::toGlm(mesh.mesh.normal(f)));
+    // Each triangle's own plane (a piece's plane is a best fit, its corners within kPlanarity
+    // of it): the clear-sight test separates by it.
+    const size_t i = indices.size() - 3;
+    const glm::dvec3 a = positions[indices[i]], n = glm::cross(positions[indices[i + 1]] - a, positions[indices[i + 2]] - a);
+    normals.push_back(glm::length(n) > 0 ? glm::normalize(n) : PatchMesh::toGlm(mesh.mesh.normal(f)));
   }
   occluders_ = std::make_unique<ElementHierarchy>(positions, indices, normals);
   clearSight_ = std::make_unique<ClearSight>(*occluders_, kClearSightMargin * sceneSize_);
@@ -214,26 +220,25 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
   light.normal = patch.normal;
   light.emission = mesh.emission(patch.elements[0]);
   light.first = int(points_.size());
+  // Strata of equal area, neighbours in order, over the whole patch (a ring round its hole
+  // too): a tested sample stands for the stride of them after it.
+  for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
+  light.count = int(points_.size()) - light.first;
   light.outlines = patchLoops(mesh, patch);
-  if (light.outlines.size() == 1) {
-    for (const ShooterSample& s : patchSamples(mesh, p, count)) addSample(s.point, light.normal);
-  } else {
-    // A patch round a hole (or pinched): each element has its share of the samples, the
-    // centroids of an m×m split of the triangle; without closed loops, the elements are its
-    // outlines.
-    const bool open = light.outlines.empty();
+  if (light.outlines.empty())  // no closed loops: the elements' outlines
     for (int e : patch.elements) {
       const auto c = mesh.corners(e);
-      if (open) light.outlines.emplace_back(c.begin(), c.end());
-      const int m = int(std::ceil(std::sqrt(std::max(1.0, count * mesh.area(e) / patch.area))));
-      for (const auto& t : congruentSplit(c, m)) addSample((t[0] + t[1] + t[2]) / 3.0, light.normal);
+      light.outlines.emplace_back(c.begin(), c.end());
     }
-  }
-  light.count = int(points_.size()) - light.first;
   std::vector<glm::dvec3> corners;
   for (const auto& o : light.outlines) corners.insert(corners.end(), o.begin(), o.end());
   light.hull = light.rayHull = planarConvexHull(corners, light.normal);
-  for (glm::dvec3& corner : light.rayHull) corner += light.normal * (kRayOffset * sceneSize_);
+  for (size_t i = 0; i < light.hull.size(); ++i)
+    for (size_t j = i + 1; j < light.hull.size(); ++j)
+      light.size = std::max(light.size, glm::length(light.hull[i] - light.hull[j]));
+  // The pyramid's base halfway between the emitter and the ray ends: it holds every ray
+  // whole, and the emitter's own elements stay well outside it.
+  for (glm::dvec3& corner : light.rayHull) corner += light.normal * (0.5 * kRayOffset * sceneSize_);
   lights_.push_back(std::move(light));
 }
 
@@ -333,9 +338,11 @@ double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, s
 namespace {
 
 /// A light is taken to lie wholly above a point's horizon, and the point wholly in front of
-/// it, when every corner of its hull is above by this share of its distance at least: then
-/// every sample (inside the hull) is, whatever the rounding.
+/// it, when every corner of its hull is above by this share of its distance, plus
+/// kPlanarSlack of the light's size, at least: then every sample is, whatever the rounding
+/// (samples lie inside the hull but for a piece's planarity tolerance).
 constexpr double kWhollyAbove = 1e-9;
+constexpr double kPlanarSlack = 4 * kPlanarity;
 
 }  // namespace
 
@@ -348,7 +355,7 @@ void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t 
   bool whole = true;
   for (const glm::dvec3& c : light.hull) {
     const glm::dvec3 d = c - p;
-    const double margin = kWhollyAbove * glm::length(d);
+    const double margin = kWhollyAbove * glm::length(d) + kPlanarSlack * light.size;
     whole = whole && glm::dot(n, d) > margin && -glm::dot(light.normal, d) > margin;
   }
   for (int j = light.first; j < light.first + light.count; ++j) {
