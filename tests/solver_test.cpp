@@ -342,7 +342,9 @@ TEST(PenumbraTest, SoftShadowMatchesTheExactVisibleFactor) {
   EXPECT_NEAR(xs, xe, 2 * L);
   // Beyond x = 90 (light edge, past the square's edge, to the floor) the whole light is seen.
   for (const auto& [x, ratio] : solved)
-    if (std::abs(x) > 90 + 2 * L) EXPECT_NEAR(ratio, 1.0, 0.05) << "at x = " << x;
+    if (std::abs(x) > 90 + 2 * L) {
+      EXPECT_NEAR(ratio, 1.0, 0.05) << "at x = " << x;
+    }
 }
 
 
@@ -405,14 +407,18 @@ TEST(SamplesTest, MorePointsNearOtherSurfaces) {
   options.proximitySamples = 0;
   const SampleCounter fixed(mesh, options);
   for (int p = 0; p < int(mesh.patches.size()); p += 5)
-    if (luminance(mesh.emission(mesh.patches[p].elements[0])) == 0) EXPECT_EQ(fixed(p), 1);
+    if (luminance(mesh.emission(mesh.patches[p].elements[0])) == 0) {
+      EXPECT_EQ(fixed(p), 1);
+    }
   // A minimum above the emitters' count wins (no clamp with crossed bounds).
   options.proximitySamples = 0.7;
   options.shooterSamples = 8;
   options.emitterSamples = 2;
   const SampleCounter crossed(mesh, options);
   for (int p = 0; p < int(mesh.patches.size()); p += 5)
-    if (luminance(mesh.emission(mesh.patches[p].elements[0])) == 0) EXPECT_EQ(crossed(p), 8);
+    if (luminance(mesh.emission(mesh.patches[p].elements[0])) == 0) {
+      EXPECT_EQ(crossed(p), 8);
+    }
 }
 
 TEST(DeterminismTest, SameResultWithOneOrTwoWorkers) {
