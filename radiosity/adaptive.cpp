@@ -254,7 +254,8 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   std::vector<int> changed;
   for (int round = 0; round < options.maxRounds && light.enabled() && !capReached(mesh, options); ++round) {
     progress.update(size_t(round));
-    std::vector<int> marked = elementsToRefine(mesh, light, estimate, options, midpoints, round ? &changed : nullptr);
+    std::vector<int> marked =
+        elementsToRefine(mesh, light, estimate, options, midpoints, round ? &changed : nullptr);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
     std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed);

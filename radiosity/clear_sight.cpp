@@ -64,8 +64,8 @@ bool ClearSight::apart(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec
   }
   for (const Plane& plane : planes) {
     const double limit = plane.offset + margin_;
-    if (glm::dot(plane.normal, a) > limit && glm::dot(plane.normal, b) > limit && glm::dot(plane.normal, c) > limit)
-      return true;
+    const glm::dvec3& n = plane.normal;
+    if (glm::dot(n, a) > limit && glm::dot(n, b) > limit && glm::dot(n, c) > limit) return true;
   }
   return false;
 }
@@ -125,7 +125,8 @@ std::vector<glm::dvec3> planarConvexHull(const std::vector<glm::dvec3>& points, 
   std::vector<Point2> p;
   p.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) p.push_back({glm::dot(points[i], u), glm::dot(points[i], v), i});
-  std::sort(p.begin(), p.end(), [](const Point2& a, const Point2& b) { return a.u < b.u || (a.u == b.u && a.v < b.v); });
+  std::sort(p.begin(), p.end(),
+            [](const Point2& a, const Point2& b) { return a.u < b.u || (a.u == b.u && a.v < b.v); });
   auto turn = [](const Point2& o, const Point2& a, const Point2& b) {
     return (a.u - o.u) * (b.v - o.v) - (a.v - o.v) * (b.u - o.u);
   };

@@ -202,7 +202,8 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
     // Each triangle's own plane (a piece's plane is a best fit, its corners within kPlanarity
     // of it): the clear-sight test separates by it.
     const size_t i = indices.size() - 3;
-    const glm::dvec3 a = positions[indices[i]], n = glm::cross(positions[indices[i + 1]] - a, positions[indices[i + 2]] - a);
+    const glm::dvec3 a = positions[indices[i]];
+    const glm::dvec3 n = glm::cross(positions[indices[i + 1]] - a, positions[indices[i + 2]] - a);
     normals.push_back(glm::length(n) > 0 ? glm::normalize(n) : PatchMesh::toGlm(mesh.mesh.normal(f)));
   }
   occluders_ = std::make_unique<ElementHierarchy>(positions, indices, normals);
@@ -361,7 +362,8 @@ void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t 
   for (int j = light.first; j < light.first + light.count; ++j) {
     if (!whole) {
       const glm::dvec3 d = onLight_[size_t(j)] - p;
-      if (glm::dot(n, d) <= 0 || -glm::dot(light.normal, d) <= 0) continue;  // below the horizon, or behind the light
+      // Below the horizon, or behind the light.
+      if (glm::dot(n, d) <= 0 || -glm::dot(light.normal, d) <= 0) continue;
     }
     out.above.push_back(j);
   }

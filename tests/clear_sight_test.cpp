@@ -50,7 +50,8 @@ TEST(ClearSightTest, AnythingInThePyramidBlocksIt) {
 TEST(ClearSightTest, TheSurfacesAtEitherEndDoNotBlockIt) {
   // The floor the point stands on (just below it) and the light's own plane (just beyond
   // the base) are apart from the pyramid; a wall reaching into it is not.
-  const std::array<glm::dvec3, 3> floor = {glm::dvec3(-5, -1e-5, 5), glm::dvec3(5, -1e-5, 5), glm::dvec3(0, -1e-5, -5)};
+  const std::array<glm::dvec3, 3> floor = {glm::dvec3(-5, -1e-5, 5), glm::dvec3(5, -1e-5, 5),
+                                           glm::dvec3(0, -1e-5, -5)};
   const std::array<glm::dvec3, 3> ceiling = {glm::dvec3(-5, 2 + 1e-5, -5), glm::dvec3(5, 2 + 1e-5, -5),
                                              glm::dvec3(0, 2 + 1e-5, 5)};
   EXPECT_TRUE(ClearSight(triangles({floor, ceiling}), kMargin).clear(kApex, kLight));

@@ -151,7 +151,8 @@ int main(int argc, char** argv) {
       double open = 0;
       for (const auto& t : exact.lights())
         if (glm::dot(t.normal, batch[k].x - t.outlines[0][0]) > 0)
-          open += luminance(batch[k].rho * t.emission) * pointRegionFormFactor(batch[k].x, batch[k].normal, t.outlines);
+          open += luminance(batch[k].rho * t.emission) *
+                  pointRegionFormFactor(batch[k].x, batch[k].normal, t.outlines);
       batch[k].direct = luminance(direct[k].radiosity);
       if (open > 0 && batch[k].direct > kPenumbraLow * open && batch[k].direct < kPenumbraHigh * open &&
           int(points.size()) < wanted)
