@@ -409,7 +409,7 @@ void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, S
       if (k % stride) light.visible[k] = light.visible[k - k % stride];
 }
 
-VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
+VertexLight DirectLight::compute(const Probe& probe, long& raysCast, long& seenWhole) const {
   VertexLight out;
   out.visible.assign(size_t((samples_ + 63) / 64), 0);
   out.weight.assign(lights_.size(), 0.0f);
@@ -434,10 +434,12 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast) const {
     if (seen[t].above.empty()) continue;
     const size_t s = stride(t, open);
     if (probe.clearSight && !probe.visible && seen[t].above.size() / s >= size_t(kClearSightRays) &&
-        clearSight_->clear(p, lights_[t].rayHull))
+        clearSight_->clear(p, lights_[t].rayHull)) {
       seen[t].seeWhole();
-    else
+      ++seenWhole;
+    } else {
       test(probe, p, s, seen[t], raysCast);
+    }
     shown += lum[t] * seenShare(p, n, t, seen[t]);
   }
   // In a shadow the light that arrives is not what the open sky would bring: a light in
@@ -462,7 +464,7 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
   // Rays per worker, each count on its own cache line: counted per ray, they would otherwise
   // bounce one line between the cores.
   struct alignas(64) Count {
-    long rays = 0;
+    long rays = 0, whole = 0;
   };
   std::vector<Count> cast(static_cast<size_t>(workers_));
   StageProgress progress("direct light: points", probes.size());  // said by the caller's worker
@@ -470,10 +472,10 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
       probes.size(), workers_,
       [&](size_t k, int worker) {
         if (worker == 0) progress.update(k);
-        out[k] = compute(probes[k], cast[size_t(worker)].rays);
+        out[k] = compute(probes[k], cast[size_t(worker)].rays, cast[size_t(worker)].whole);
       },
       64);
-  for (const Count& c : cast) rays_ += c.rays;
+  for (const Count& c : cast) rays_ += c.rays, seenWhole_ += c.whole;
   return out;
 }
 

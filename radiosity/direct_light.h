@@ -80,6 +80,8 @@ class DirectLight {
   const std::vector<LightPolygon>& lights() const { return lights_; }
   int samples() const { return samples_; }
   long rays() const { return rays_; }
+  /// Lights seen whole by clear sight, without a ray (summed over the points).
+  long seenWhole() const { return seenWhole_; }
   /// Per vertex, the direct light (radiosity).
   std::vector<glm::dvec3> radiosity() const;
 
@@ -120,8 +122,8 @@ class DirectLight {
   /// Tests every stride-th of the light's samples from p (those not tested yet), unless it
   /// was tested as finely already.
   void test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light, long& raysCast) const;
-  /// The direct light at one probe, counting the rays it casts.
-  VertexLight compute(const Probe& probe, long& raysCast) const;
+  /// The direct light at one probe, counting the rays it casts and the lights it sees whole.
+  VertexLight compute(const Probe& probe, long& raysCast, long& seenWhole) const;
 
   struct Rays;
   std::unique_ptr<Rays> rays_impl_;
@@ -134,7 +136,7 @@ class DirectLight {
   double sceneSize_ = 1;
   int samples_ = 0, raysPerPoint_ = kRaysPerPoint, workers_ = 1;
   bool enabled_ = false;
-  long rays_ = 0;
+  long rays_ = 0, seenWhole_ = 0;
 };
 
 /// The probe of mesh vertex v: its point, normal and reflectance, towards the centroid of its

@@ -127,7 +127,9 @@ TEST(DirectLightTest, WhatAPointSeesWholeCastsNoRayAndShowsWhatRaysShow) {
   for (DirectLight::Probe& probe : probes) probe.clearSight = false;
   const std::vector<VertexLight> b = rays.lightAt(probes);
   EXPECT_EQ(clear.rays(), 0);
+  EXPECT_EQ(clear.seenWhole(), long(probes.size()));  // the one lamp, from every floor vertex
   EXPECT_GE(rays.rays(), long(probes.size()) * kMinRaysPerLight);
+  EXPECT_EQ(rays.seenWhole(), 0);
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k) {
     EXPECT_EQ(a[k].radiosity, b[k].radiosity) << "floor vertex " << k;

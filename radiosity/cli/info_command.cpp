@@ -113,7 +113,8 @@ void printContacts(const Scene& scene, const PatchMesh& mesh) {
 /// How the direct light is shown: at the vertices by rays (points, rays) or from the hemicubes.
 std::string directLine(const DirectLight* direct) {
   return direct ? "at vertices by rays, " + std::to_string(direct->samples()) + " points on " +
-                      std::to_string(direct->lights().size()) + " lights, " + std::to_string(direct->rays()) + " rays"
+                      std::to_string(direct->lights().size()) + " lights, " + std::to_string(direct->rays()) +
+                      " rays (" + std::to_string(direct->seenWhole()) + " lights seen whole without one)"
                 : "from the hemicubes";
 }
 

@@ -54,7 +54,8 @@ Json adaptiveBlock(const AdaptiveStats& adaptive) {
 Json directLightBlock(const DirectLight* direct) {
   return {{"at_vertices", bool(direct)},
           {"light_samples", direct ? direct->samples() : 0},
-          {"rays", direct ? direct->rays() : 0}};
+          {"rays", direct ? direct->rays() : 0},
+          {"seen_whole", direct ? direct->seenWhole() : 0}};
 }
 
 /// The names of some surfaces, as a JSON array.
