@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -35,16 +36,46 @@ glm::dvec3 crossAxis(const glm::dvec3& n) {
 }  // namespace
 
 PlaneFrame planeFrame(const Ring& ring) {
-  PlaneFrame f;
-  f.origin = glm::dvec3(0.0);
-  for (const auto& p : ring) f.origin += p;
-  f.origin /= double(ring.size());
+  glm::dvec3 origin(0.0);
+  for (const auto& p : ring) origin += p;
+  origin /= double(ring.size());
   glm::dvec3 n = newellNormal(ring);
   double len = glm::length(n);
-  f.normal = len > 0 ? n / len : glm::dvec3(0, 0, 1);
+  return planeFrame(origin, len > 0 ? n / len : glm::dvec3(0, 0, 1));
+}
+
+PlaneFrame planeFrame(const glm::dvec3& origin, const glm::dvec3& normal) {
+  PlaneFrame f;
+  f.origin = origin;
+  f.normal = normal;
   f.u = glm::normalize(glm::cross(crossAxis(f.normal), f.normal));
   f.v = glm::cross(f.normal, f.u);
   return f;
+}
+
+std::vector<size_t> convexHull(const std::vector<glm::dvec2>& points) {
+  std::vector<size_t> order(points.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (points.size() < 3) return order;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::make_pair(points[a].x, points[a].y) < std::make_pair(points[b].x, points[b].y);
+  });
+  auto turn = [&](size_t o, size_t a, size_t b) {
+    return (points[a].x - points[o].x) * (points[b].y - points[o].y) -
+           (points[a].y - points[o].y) * (points[b].x - points[o].x);
+  };
+  std::vector<size_t> hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < order.size(); ++i) {  // lower chain
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], order[i]) <= 0) --k;
+    hull[k++] = order[i];
+  }
+  for (size_t i = order.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], order[i]) <= 0) --k;
+    hull[k++] = order[i];
+  }
+  hull.resize(k - 1);  // the last corner is the first
+  return hull;
 }
 
 double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {

@@ -29,6 +29,13 @@ struct PlaneFrame {
 /// The frame of the best-fit plane of a ring (Newell normal, origin at the centroid of
 /// its vertices).
 PlaneFrame planeFrame(const Ring& ring);
+/// The frame of the plane through `origin` with unit normal `normal`.
+PlaneFrame planeFrame(const glm::dvec3& origin, const glm::dvec3& normal);
+
+/// The convex hull of points in a plane: the indices of its corners, counter-clockwise
+/// (Andrew's monotone chain on the points sorted by x, then y; points on its edges left out).
+/// Fewer than three points: all of them.
+std::vector<size_t> convexHull(const std::vector<glm::dvec2>& points);
 
 /// Area of a triangle in 3D.
 double triangleArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);

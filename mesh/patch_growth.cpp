@@ -11,11 +11,6 @@
 namespace rad::meshing {
 namespace {
 
-/// Twice the signed area of the triangle o, a, b: positive when it turns left.
-double turn(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
 /// Lexicographic order of 2D points: by x, then y.
 bool sweepLess(const glm::dvec2& a, const glm::dvec2& b) {
   return std::make_pair(a.x, a.y) < std::make_pair(b.x, b.y);
@@ -108,34 +103,16 @@ std::vector<int> growPatch(const PointTable& table, const PlaneFrame& frame,
   return patch;
 }
 
-/// The points (ids) projected on the frame's plane, in sweep order.
-std::vector<std::pair<glm::dvec2, int>> sweptProjections(const PointTable& table, const PlaneFrame& frame,
-                                                         const std::vector<int>& ids) {
-  std::vector<std::pair<glm::dvec2, int>> pts;
-  for (int id : ids) pts.push_back({frame.project(table[id]), id});
-  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return sweepLess(a.first, b.first); });
-  return pts;
-}
-
 }  // namespace
 
 std::vector<int> convexHull(const PointTable& table, const PlaneFrame& frame, std::vector<int> ids) {
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   if (ids.size() < 3) return ids;
-  const auto pts = sweptProjections(table, frame, ids);
-  std::vector<std::pair<glm::dvec2, int>> hull(2 * pts.size());
-  size_t k = 0;
-  for (size_t i = 0; i < pts.size(); ++i) {  // lower chain
-    while (k >= 2 && turn(hull[k - 2].first, hull[k - 1].first, pts[i].first) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
-    while (k >= lower && turn(hull[k - 2].first, hull[k - 1].first, pts[i].first) <= 0) --k;
-    hull[k++] = pts[i];
-  }
+  std::vector<glm::dvec2> projected;
+  for (int id : ids) projected.push_back(frame.project(table[id]));
   std::vector<int> out;
-  for (size_t i = 0; i + 1 < k; ++i) out.push_back(hull[i].second);
+  for (size_t k : rad::convexHull(projected)) out.push_back(ids[k]);
   return out;
 }
 

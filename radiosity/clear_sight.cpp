@@ -6,6 +6,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "mesh/geometry.h"
+
 namespace rad {
 namespace {
 
@@ -19,11 +21,9 @@ bool ClearSight::pyramid(const glm::dvec3& apex, const std::vector<glm::dvec3>& 
   planes.clear();
   if (base.size() < 3) return false;
   // The base's plane by Newell's sum (any convex polygon, either way round), facing the apex.
-  glm::dvec3 normal(0.0), centroid(0.0);
+  glm::dvec3 normal = newellNormal(base), centroid(0.0);
   for (const glm::dvec3& corner : base) centroid += corner;
   centroid /= double(base.size());
-  for (size_t i = 0; i < base.size(); ++i)  // relative to the centroid: exact far from the origin too
-    normal += glm::cross(base[i] - centroid, base[(i + 1) % base.size()] - centroid);
   const double length = glm::length(normal);
   if (!(length > 0)) return false;
   normal /= length;
@@ -109,42 +109,6 @@ bool ClearSight::clear(const glm::dvec3& apex, const std::vector<glm::dvec3>& ba
     }
   }
   return true;
-}
-
-std::vector<glm::dvec3> planarConvexHull(const std::vector<glm::dvec3>& points, const glm::dvec3& normal) {
-  if (points.size() < 3) return points;
-  // Coordinates (u, v) in the plane, v = normal × u: counter-clockwise there is
-  // counter-clockwise seen from the normal's side. Andrew's monotone chain.
-  const glm::dvec3 u = glm::normalize(std::abs(normal.x) < 0.9 ? glm::cross(normal, glm::dvec3(1, 0, 0))
-                                                               : glm::cross(normal, glm::dvec3(0, 1, 0)));
-  const glm::dvec3 v = glm::cross(normal, u);
-  struct Point2 {
-    double u, v;
-    size_t index;
-  };
-  std::vector<Point2> p;
-  p.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) p.push_back({glm::dot(points[i], u), glm::dot(points[i], v), i});
-  std::sort(p.begin(), p.end(),
-            [](const Point2& a, const Point2& b) { return a.u < b.u || (a.u == b.u && a.v < b.v); });
-  auto turn = [](const Point2& o, const Point2& a, const Point2& b) {
-    return (a.u - o.u) * (b.v - o.v) - (a.v - o.v) * (b.u - o.u);
-  };
-  std::vector<Point2> hull(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {  // lower chain
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k - 1);  // the last point is the first
-  std::vector<glm::dvec3> out;
-  out.reserve(hull.size());
-  for (const Point2& q : hull) out.push_back(points[q.index]);
-  return out;
 }
 
 }  // namespace rad

@@ -42,8 +42,4 @@ class ClearSight {
   double margin_;
 };
 
-/// The convex hull of points lying in one plane with unit normal `normal`, counter-clockwise
-/// seen from the side `normal` points to.
-std::vector<glm::dvec3> planarConvexHull(const std::vector<glm::dvec3>& points, const glm::dvec3& normal);
-
 }  // namespace rad

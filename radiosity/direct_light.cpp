@@ -233,10 +233,12 @@ void DirectLight::addLight(const PatchMesh& mesh, int p, int count) {
     }
   std::vector<glm::dvec3> corners;
   for (const auto& o : light.outlines) corners.insert(corners.end(), o.begin(), o.end());
-  light.hull = light.rayHull = planarConvexHull(corners, light.normal);
-  for (size_t i = 0; i < light.hull.size(); ++i)
-    for (size_t j = i + 1; j < light.hull.size(); ++j)
-      light.size = std::max(light.size, glm::length(light.hull[i] - light.hull[j]));
+  const PlaneFrame frame = planeFrame(corners[0], light.normal);
+  std::vector<glm::dvec2> projected;
+  for (const glm::dvec3& c : corners) projected.push_back(frame.project(c));
+  for (size_t k : convexHull(projected)) light.hull.push_back(corners[k]);
+  light.rayHull = light.hull;
+  light.size = ringDiameter(light.hull);
   // The pyramid's base halfway between the emitter and the ray ends: it holds every ray
   // whole, and the emitter's own elements stay well outside it.
   for (glm::dvec3& corner : light.rayHull) corner += light.normal * (0.5 * kRayOffset * sceneSize_);
@@ -331,8 +333,7 @@ struct DirectLight::SeenLight {
 double DirectLight::unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
   const LightPolygon& light = lights_[t];
   if (glm::dot(light.normal, p - light.outlines[0][0]) <= 0) return 0;  // behind the emitter
-  const double F = light.outlines.size() == 1 ? pointPolygonFormFactor(p, n, light.outlines[0])
-                                              : pointRegionFormFactor(p, n, light.outlines);
+  const double F = pointRegionFormFactor(p, n, light.outlines);
   return F > 0 ? F : 0;
 }
 

@@ -63,19 +63,5 @@ TEST(ClearSightTest, ALightSeenEdgeOnIsNeverClear) {
   EXPECT_FALSE(ClearSight(triangles({tile(5, 5, 5)}), kMargin).clear(glm::dvec3(3, 2, 0), kLight));
 }
 
-TEST(ClearSightTest, PlanarConvexHull) {
-  // A square with points on its edges and inside: its four corners, counter-clockwise seen
-  // from the normal's side.
-  const glm::dvec3 up(0, 1, 0);
-  const std::vector<glm::dvec3> points = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {0.3, 0, 0.4}, {1, 0, 1},
-                                          {0, 0, 1}, {0, 0, 0.5}, {0.5, 0, 1}};
-  const std::vector<glm::dvec3> hull = planarConvexHull(points, up);
-  ASSERT_EQ(hull.size(), 4u);
-  glm::dvec3 newell(0.0);
-  for (size_t i = 0; i < hull.size(); ++i) newell += glm::cross(hull[i], hull[(i + 1) % hull.size()]);
-  EXPECT_GT(glm::dot(newell, up), 0);
-  EXPECT_NEAR(glm::length(newell) / 2, 1.0, 1e-12);  // the square's area
-}
-
 }  // namespace
 }  // namespace rad

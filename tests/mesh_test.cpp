@@ -143,7 +143,9 @@ TEST_F(CornellTest, NormalsPointIntoTheBoxAndOutOfTheBlocks) {
   }
   int light = surfaceIndex("light");
   for (int e = 0; e < mesh_->elementCount(); ++e)
-    if (mesh_->surface(e) == light) EXPECT_NEAR(mesh_->normal(e).y, -1.0, 1e-12);
+    if (mesh_->surface(e) == light) {
+      EXPECT_NEAR(mesh_->normal(e).y, -1.0, 1e-12);
+    }
 }
 
 TEST_F(CornellTest, NonPlanarRedWallIsTriangulatedAndSaysSo) {
@@ -314,6 +316,23 @@ TEST(MeshingTest, TwoSidedSurfaceGetsAnOppositeCopy) {
     EXPECT_EQ(sides.size(), 1u);
   }
   EXPECT_NEAR(m.surfaces[0].area, 1.0, 1e-12);
+}
+
+TEST(GeometryTest, ConvexHullKeepsTheCornersCounterClockwise) {
+  // A square with points on its edges and inside: its four corners, counter-clockwise.
+  const std::vector<glm::dvec2> points = {{0, 0}, {0.5, 0}, {1, 0}, {0.3, 0.4}, {1, 1}, {0, 1}, {0, 0.5}, {0.5, 1}};
+  const std::vector<size_t> hull = convexHull(points);
+  ASSERT_EQ(hull.size(), 4u);
+  for (size_t k : hull) EXPECT_TRUE(k == 0 || k == 2 || k == 4 || k == 5) << k;
+  double twiceArea = 0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const glm::dvec2 &a = points[hull[i]], &b = points[hull[(i + 1) % hull.size()]];
+    twiceArea += a.x * b.y - a.y * b.x;
+  }
+  EXPECT_DOUBLE_EQ(twiceArea, 2.0);  // positive: counter-clockwise, and the square's area
+  // Collinear points leave the two ends; fewer than three points are kept as they are.
+  EXPECT_EQ(convexHull({{0, 0}, {1, 1}, {2, 2}}).size(), 2u);
+  EXPECT_EQ(convexHull({{0, 0}, {1, 1}}).size(), 2u);
 }
 
 }  // namespace
