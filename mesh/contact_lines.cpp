@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-
 #include <unordered_map>
 
 #include <glm/geometric.hpp>

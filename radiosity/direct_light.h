@@ -38,12 +38,12 @@ constexpr int kClearSightRays = 32;
 
 /// One emitting patch seen from the vertices: its outline (counter-clockwise seen from its
 /// lit side) and the outlines of its holes (wound the other way; loops through a vertex where
-/// the patch is pinched); and its samples [first, first + count). A lamp's ring round its holder is one
+/// the patch is pinched); and its samples [first, first + count). A patch round a hole is one
 /// light: the lights share a point's rays light by light, so it costs what one light does.
 struct LightPolygon {
   std::vector<std::vector<glm::dvec3>> outlines;
-  /// The outlines' convex hull, and the same moved off the emitter as the ray ends are: every
-  /// ray to the light's samples lies in the hull of its start and this (ClearSight).
+  /// The outlines' convex hull, and the same moved off the emitter halfway to the ray ends:
+  /// every ray to the light's samples lies in the hull of its start and this (ClearSight).
   std::vector<glm::dvec3> hull, rayHull;
   double size = 0;  ///< the hull's diameter
   glm::dvec3 normal{0.0}, emission{0.0};

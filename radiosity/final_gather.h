@@ -35,8 +35,8 @@ namespace rad {
 constexpr int kDefaultGatherResolution = 32;
 /// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
 /// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class
-/// (kCulledGatherSecondsPerPair where hemicubes cull), so 4e9 is one to four minutes on two. Skipping it costs more
-/// at scale: at 5e8, Modern Hall split to 100k triangles (9.2e8) shot to 1e-3 at the full
+/// (kCulledGatherSecondsPerPair where hemicubes cull), so 4e9 is one to four minutes on two.
+/// Skipping it costs more at scale: at 5e8, Modern Hall split to 100k triangles (9.2e8) shot to 1e-3 at the full
 /// defaults instead, for 11 minutes; gathered, its whole solve takes 91 s. Split to 300k: 2.8e9.
 constexpr double kMaxGatherWork = 4e9;
 /// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
