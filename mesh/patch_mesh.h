@@ -1,6 +1,7 @@
 #pragma once
 // The patch mesh: surfaces ▸ patches (the shooters) ▸ elements (the receivers, triangles).
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -99,6 +100,13 @@ class PatchMesh {
   bool emits(int p) const;
   /// The three corners of element e, counter-clockwise seen from its lit side.
   std::array<glm::dvec3, 3> corners(int e) const;
+  /// The outline of a group of elements (those for which inGroup(e) holds, `elements`): their
+  /// edges with no element of the group on the other side, chained into loops of vertex
+  /// indices, counter-clockwise seen from the lit side as the elements are (an outline and,
+  /// wound the other way, its holes). Where the group is pinched at a vertex (two boundary
+  /// edges leave it), a loop passes it twice. Empty if the edges do not close into loops.
+  template <class InGroup>
+  std::vector<std::vector<int>> boundaryLoops(const std::vector<int>& elements, const InGroup& inGroup) const;
 
   /// Sets element e's attributes (its patch stays); used by buildPatchMesh.
   void setElement(int e, int surface, int side, double area, const glm::dvec3& reflectance,
@@ -115,6 +123,32 @@ class PatchMesh {
   OpenMesh::FPropHandleT<double> area_;
   OpenMesh::FPropHandleT<OpenMesh::Vec3d> reflectance_, emission_;
 };
+
+template <class InGroup>
+std::vector<std::vector<int>> PatchMesh::boundaryLoops(const std::vector<int>& elements, const InGroup& inGroup) const {
+  std::unordered_multimap<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedges
+  for (int e : elements)
+    for (auto h : mesh.fh_range(face(e))) {
+      const auto other = mesh.opposite_face_handle(h);
+      if (!other.is_valid() || !inGroup(other.idx())) next.emplace(mesh.from_vertex_handle(h).idx(), h);
+    }
+  std::vector<std::vector<int>> loops;
+  while (!next.empty()) {
+    auto at = next.begin();
+    const int start = at->first;
+    std::vector<int>& loop = loops.emplace_back();
+    for (;;) {
+      const auto h = at->second;
+      next.erase(at);
+      loop.push_back(mesh.from_vertex_handle(h).idx());
+      const int to = mesh.to_vertex_handle(h).idx();
+      if (to == start) break;
+      at = next.find(to);
+      if (at == next.end()) return {};  // not closed
+    }
+  }
+  return loops;
+}
 
 /// Meshes every surface of the scene: planar pieces (non-planar polygons are triangulated,
 /// with a warning) are cut along the lines where other surfaces touch or pierce them, and

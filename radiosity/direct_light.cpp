@@ -21,35 +21,14 @@
 namespace rad {
 namespace {
 
-/// The outline of a patch: its elements' edges with no element of the patch on the other
-/// side, chained into loops, counter-clockwise seen from the lit side as the elements are (an
-/// outline and, wound the other way, its holes). Where the patch is pinched at a vertex (two
-/// boundary edges leave it), the loops pass it twice; Lambert's contour sum over the loops is
-/// the patch's all the same, as it is a sum over the boundary's edges.
+/// The outline of a patch (PatchMesh::boundaryLoops) as points. Lambert's contour sum over
+/// the loops is the patch's, pinched or not, as it is a sum over the boundary's edges.
 std::vector<std::vector<glm::dvec3>> patchLoops(const PatchMesh& mesh, const Patch& patch) {
-  const TriMesh& m = mesh.mesh;
   const int id = mesh.patch(patch.elements[0]);
-  std::unordered_multimap<int, TriMesh::HalfedgeHandle> next;  // from vertex → boundary halfedges
-  for (int e : patch.elements)
-    for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
-      auto other = m.opposite_face_handle(h);
-      if (other.is_valid() && mesh.patch(other.idx()) == id) continue;
-      next.emplace(m.from_vertex_handle(h).idx(), h);
-    }
   std::vector<std::vector<glm::dvec3>> loops;
-  while (!next.empty()) {
-    auto at = next.begin();
-    const int start = at->first;
-    std::vector<glm::dvec3>& loop = loops.emplace_back();
-    for (;;) {
-      const auto h = at->second;
-      next.erase(at);
-      loop.push_back(PatchMesh::toGlm(m.point(m.from_vertex_handle(h))));
-      const int to = m.to_vertex_handle(h).idx();
-      if (to == start) break;
-      at = next.find(to);
-      if (at == next.end()) return {};  // not closed: no outline
-    }
+  for (const auto& loop : mesh.boundaryLoops(patch.elements, [&](int e) { return mesh.patch(e) == id; })) {
+    std::vector<glm::dvec3>& points = loops.emplace_back();
+    for (int v : loop) points.push_back(PatchMesh::toGlm(mesh.mesh.point(TriMesh::VertexHandle(v))));
   }
   return loops;
 }

@@ -10,6 +10,7 @@
 
 #include "mesh/parallel.h"
 #include "radiosity/direct_light.h"
+#include "radiosity/flat_regions.h"
 #include "radiosity/gather_points.h"
 #include "radiosity/hemicube.h"
 
@@ -56,11 +57,11 @@ void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, He
 /// single gather over y, at the gathering vertices) and kept while the budget allows.
 Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<bool>& gathering, const Field& y,
                 Field& once, const GatherOptions& options, GatherStats& stats) {
-  const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(drawn);
+  const FlatRegions regions(drawn, sceneSize);
   const int workers = workerCount(options.workers);
   std::vector<std::unique_ptr<Hemicube>> cubes;
   std::vector<FormFactors> scratch(static_cast<size_t>(workers));
-  for (int w = 0; w < workers; ++w) cubes.push_back(std::make_unique<Hemicube>(geometry, options.resolution, sceneSize));
+  for (int w = 0; w < workers; ++w) cubes.push_back(std::make_unique<Hemicube>(regions, options.resolution, sceneSize));
   Rows out;
   out.rows.resize(gathering.size());
   once.assign(gathering.size(), glm::dvec3(0.0));
@@ -260,18 +261,20 @@ GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, doub
     if (points.at[v]) gathering.push_back(int(v));
   GatherEstimate out;
   if (gathering.empty()) return out;
-  const HemicubeGeometry geometry = HemicubeGeometry::fromMesh(base ? *base : mesh);
-  Hemicube cube(geometry, options.resolution, sceneSize);
+  const FlatRegions regions(base ? *base : mesh, sceneSize);
+  Hemicube cube(regions, options.resolution, sceneSize);
   FormFactors f;
   const size_t probes = std::min(gathering.size(), size_t(kGatherWorkProbes));
   for (size_t k = 0; k < probes; ++k) {
     factorsAt(mesh, sceneSize, options.seed, gathering[(2 * k + 1) * gathering.size() / (2 * probes)], cube, f);
-    out.work += double(cube.sorted());
+    out.drawn += double(cube.sorted());
+    out.located += double(cube.counts().located);
     out.factors += double(f.elements.size());
   }
   out.culled = cube.culling() == HemicubeCulling::Hidden;
   const double perProbe = double(gathering.size()) / double(probes);
-  out.work *= perProbe;
+  out.drawn *= perProbe;
+  out.located *= perProbe;
   out.factors *= perProbe;
   return out;
 }

@@ -33,19 +33,22 @@ namespace rad {
 /// true error is 2.15 % at 16, 2.07 % at 32 and at 64, while the time goes 0.38 / 0.49 / 0.6 s
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
-/// The gather is skipped (with a warning) beyond this many (vertex, drawn element) pairs
-/// (estimateGather), about kGatherSecondsPerPair each on one core of this machine class
-/// (kCulledGatherSecondsPerPair where hemicubes cull), so 4e9 is one to four minutes on two.
-/// Skipping it costs more at scale: at 5e8, Modern Hall split to 100k triangles (9.2e8) shot to 1e-3 at the full
-/// defaults instead, for 11 minutes; gathered, its whole solve takes 91 s. Split to 300k: 2.8e9.
-constexpr double kMaxGatherWork = 4e9;
-/// The seconds one (vertex, drawn element) pair costs on one core (CornellBox-Original: 4 592
-/// hemicubes over 7 690 elements in 0.52 s on two).
-constexpr double kGatherSecondsPerPair = 3e-8;
-/// ...and where the hemicubes cull hidden elements, each drawn pair costs more (the hierarchy's
-/// visits and depth tests): Modern Hall split to 100k and 300k triangles, 9.2e8 and 2.8e9 pairs
-/// in 57 s and 198 s on two cores.
-constexpr double kCulledGatherSecondsPerPair = 1.3e-7;
+/// The gather is skipped (with a warning) when its hemicubes would take longer than this on
+/// one core of this machine class (estimateGather): a minute or more on two. Skipping it costs
+/// more at scale (the progressive solve then shoots at the full defaults: Modern Hall split to
+/// 100k triangles, shot to 1e-3, took 11 minutes; gathered, 91 s), so the budget is generous.
+constexpr double kMaxGatherSeconds = 120;
+/// The seconds one triangle a hemicube sorts to its faces costs on one core (CornellBox-Original
+/// drawing its elements: 4 592 hemicubes over 7 690 elements in 0.52 s on two)...
+constexpr double kGatherSecondsPerTriangle = 3e-8;
+/// ...where the hemicubes cull hidden triangles, each drawn one costs more (the hierarchy's
+/// visits and depth tests: Modern Hall split to 100k and 300k triangles, drawing elements,
+/// 9.2e8 and 2.8e9 in 57 s and 198 s on two cores)...
+constexpr double kCulledGatherSecondsPerTriangle = 1.3e-7;
+/// ...and a pixel that shows a flat region's outline, resolved to its element (FlatRegions),
+/// with the pixel's share of clearing and summing the faces: CornellBox-Original, 1.3e7 such
+/// pixels in 0.55 s on two cores.
+constexpr double kGatherSecondsPerLocatedPixel = 8e-8;
 /// Gathering vertices whose hemicubes estimateGather renders to estimate the rest's.
 constexpr int kGatherWorkProbes = 16;
 
@@ -88,17 +91,22 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
 /// What the gather would cost, from kGatherWorkProbes of its vertices spread over the mesh.
 /// Deterministic: the same mesh gives the same figures on any machine.
 struct GatherEstimate {
-  /// The (vertex, drawn element) pairs its hemicubes would sort to their faces: a hemicube
-  /// that culls hidden elements (interiors) costs what it sees, one that does not every element.
-  double work = 0;
+  /// The triangles its hemicubes would sort to their faces (regions' outlines and elements
+  /// left as they are): a hemicube that culls hidden triangles (interiors) costs what it sees,
+  /// one that does not every triangle.
+  double drawn = 0;
+  /// The pixels that would show a flat region, each resolved to its element.
+  double located = 0;
   /// The non-zero factors of all its rows (GatherOptions::memoryBytes keeps them to iterate).
   double factors = 0;
-  /// Whether its hemicubes cull hidden elements (Hemicube::cullingPays).
+  /// Whether its hemicubes cull hidden triangles (Hemicube::cullingPays).
   bool culled = false;
 
   /// The seconds it would take on `workers` cores of this machine class.
   double seconds(int workers) const {
-    return work * (culled ? kCulledGatherSecondsPerPair : kGatherSecondsPerPair) / double(workers);
+    return (drawn * (culled ? kCulledGatherSecondsPerTriangle : kGatherSecondsPerTriangle) +
+            located * kGatherSecondsPerLocatedPixel) /
+           double(workers);
   }
   /// Whether the rows would fit the memory budget: the vertex system is iterated to its own
   /// solution, whatever the progressive start.

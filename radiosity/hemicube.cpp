@@ -17,6 +17,7 @@
 #include "mesh/error.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/element_hierarchy.h"
+#include "radiosity/flat_regions.h"
 #include "radiosity/hemicube_culling.h"
 #include "radiosity/point_polygon.h"
 
@@ -203,6 +204,14 @@ Hemicube::Hemicube(const HemicubeGeometry& geometry, int resolution, double scen
   seen_.resize(elements);
 }
 
+Hemicube::Hemicube(const FlatRegions& regions, int resolution, double sceneSize)
+    : Hemicube(regions.drawn(), resolution, sceneSize) {
+  regions_ = &regions;
+  accumulator_.assign(regions.elementCount(), 0.0);
+  seen_.resize(regions.elementCount());
+  excludedElement_.assign(regions.elementCount(), 0);
+}
+
 Hemicube::~Hemicube() = default;
 
 void Hemicube::setCulling(HemicubeCulling culling) {
@@ -247,7 +256,10 @@ void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation
                        FormFactors& out, const std::vector<int>& excluded) {
   prepare(x, n, rotation, excluded);
   drawBatches(false);
-  accumulate(out);
+  if (regions_)
+    accumulateLocated(out);
+  else
+    accumulate(out);
 }
 
 void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,
@@ -256,9 +268,10 @@ void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation
   frame_ = HemicubeFrame::make(x, n, rotation, eyeOffset_);
   if (++stamp_ == 0) {  // wrapped: forget every old stamp
     std::fill(excluded_.begin(), excluded_.end(), 0u);
+    std::fill(excludedElement_.begin(), excludedElement_.end(), 0u);
     stamp_ = 1;
   }
-  for (int e : excluded) excluded_[size_t(e)] = stamp_;
+  for (int e : excluded) (regions_ ? excludedElement_ : excluded_)[size_t(e)] = stamp_;
   counts_ = HemicubeCounts();
   for (int f = 0; f < 5; ++f) {
     FaceDraw& draw = draws_[size_t(f)];
@@ -394,6 +407,65 @@ void Hemicube::accumulate(FormFactors& out) {
                    faces_[f]->item.size(), slots);
   out.sky = slots.sky;
   out.backFaces = slots.back;
+  takeAccumulated(out);
+}
+
+void Hemicube::accumulateLocated(FormFactors& out) {
+  out.elements.clear();
+  out.factors.clear();
+  const uint32_t drawn = uint32_t(geometry_.elementCount());
+  double sky = 0, back = 0;
+  uint32_t hint = 0;  // where the last search ended
+  for (int f = 0; f < 5; ++f) {
+    const raster::Target& face = *faces_[f];
+    const double* delta = (f == 0 ? delta_.top : delta_.side).data();
+    // The world direction of pixel (i, j) is affine in its centre's device coordinates.
+    auto world = [&](const glm::dvec3& d) { return frame_.u * d.x + frame_.v * d.y + frame_.n * d.z; };
+    const glm::dvec3 origin = world(faceDirection(f, 0.0, 0.0));
+    const glm::dvec3 dx = world(faceDirection(f, 1.0, 0.0)) - origin, dy = world(faceDirection(f, 0.0, 1.0)) - origin;
+    const double sx = 2.0 / face.width, sy = 2.0 / face.height;
+    const glm::dvec3 step = dx * sx;
+    // A run starts its search from the element found in the row below.
+    below_.assign(size_t(face.width), 0);
+    for (int j = 0, k = 0; j < face.height; ++j) {
+      const glm::dvec3 rowStart = origin + dy * ((j + 0.5) * sy - 1) + dx * (0.5 * sx - 1);
+      // Along the row, a run of pixels of one region walks its plane (RowWalk).
+      int32_t run = 0;
+      int runStart = 0;
+      FlatRegions::RowWalk walk{};
+      for (int i = 0; i < face.width; ++i, ++k) {
+        const uint32_t id = face.item[size_t(k)];
+        if (id >= drawn) {
+          (id == raster::kNoItem ? sky : back) += delta[k];
+          continue;
+        }
+        const int32_t shows = regions_->shows(id);
+        uint32_t e = uint32_t(shows);
+        if (shows < 0) {
+          if (shows != run) {
+            run = shows, runStart = i;
+            walk = regions_->rowWalk(shows, frame_.eye, rowStart + step * double(i), step);
+            hint = below_[size_t(i)];
+          }
+          e = regions_->locate(shows, walk.at(i - runStart), hint);
+          below_[size_t(i)] = hint;
+          ++counts_.located;
+        }
+        if (excludedElement_[e] == stamp_) {
+          back += delta[k];
+          continue;
+        }
+        accumulator_[e] += delta[k];
+        seen_.insert(e);
+      }
+    }
+  }
+  out.sky = sky;
+  out.backFaces = back;
+  takeAccumulated(out);
+}
+
+void Hemicube::takeAccumulated(FormFactors& out) {
   seen_.drain([&](uint32_t e) {
     if (accumulator_[e] != 0) {
       out.elements.push_back(int(e));

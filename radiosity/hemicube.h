@@ -20,6 +20,7 @@ struct Target;
 
 namespace rad {
 
+class FlatRegions;
 class PatchMesh;
 
 /// The triangles a hemicube draws: element e has corners indices[3e..3e+2] (counter-clockwise
@@ -77,9 +78,10 @@ enum class HemicubeCulling { Auto, None, Hidden };
 
 /// What the last prepare() or compute() did: elements skipped with their subtree (below the
 /// base plane, hidden), subtrees tested for being hidden, triangles drawn (summed over the
-/// faces) and the batches they were drawn in.
+/// faces) and the batches they were drawn in; drawing flat regions, the pixels resolved to
+/// their elements.
 struct HemicubeCounts {
-  size_t belowBase = 0, hidden = 0, tested = 0, drawn = 0, batches = 0;
+  size_t belowBase = 0, hidden = 0, tested = 0, drawn = 0, batches = 0, located = 0;
 };
 
 /// A hemicube over fixed geometry, reused from point to point (not thread-safe: one per thread).
@@ -88,6 +90,9 @@ class Hemicube {
   /// resolution: pixels across the top face (even, ≥ 2). sceneSize: the scene diagonal; the
   /// near plane and the eye offset are fixed fractions of it.
   Hemicube(const HemicubeGeometry& geometry, int resolution, double sceneSize);
+  /// A hemicube that draws the regions' triangles and gives the factors of their elements,
+  /// each pixel's found under its centre (see FlatRegions). `regions` must outlive it.
+  Hemicube(const FlatRegions& regions, int resolution, double sceneSize);
   ~Hemicube();
   Hemicube(const Hemicube&) = delete;
   Hemicube& operator=(const Hemicube&) = delete;
@@ -176,6 +181,11 @@ class Hemicube {
   void drawBatches(bool forTests);
   /// Sums each face's delta form factors per item into `out` (elements ascending).
   void accumulate(FormFactors& out);
+  /// accumulate() drawing flat regions: each pixel's delta form factor to the element its
+  /// centre's ray meets.
+  void accumulateLocated(FormFactors& out);
+  /// The accumulator's non-zero sums into `out` (elements ascending), emptying it.
+  void takeAccumulated(FormFactors& out);
   /// The item id of element e with this normal and corner: itself if seen from its lit side
   /// and not excluded.
   uint32_t itemId(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const;
@@ -184,6 +194,9 @@ class Hemicube {
   static uint32_t facesShowing(uint32_t shared);
 
   const HemicubeGeometry& geometry_;
+  const FlatRegions* regions_ = nullptr;  // what the drawn triangles stand for, if not themselves
+  std::vector<uint32_t> excludedElement_;  // with regions_: per element, as excluded_
+  std::vector<uint32_t> below_;            // with regions_: per column, where its last search ended
   std::shared_ptr<const ElementHierarchy> hierarchy_;
   int resolution_;
   double near_, eyeOffset_;

@@ -38,6 +38,21 @@ inline glm::vec<4, T> faceClip(int f, T a, T b, T c, T near) {
   }
 }
 
+/// The local direction (a, b, c) that face f shows at normalised device coordinates (x, y)
+/// (faceClip's inverse up to scale): the top face's (x, y, 1), a side face's at unit
+/// distance along its axis.
+template <class T>
+inline glm::vec<3, T> faceDirection(int f, T x, T y) {
+  const T c = (y + 1) / 2;
+  switch (f) {
+    case 0: return {x, y, 1};
+    case 1: return {1, x, c};
+    case 2: return {-1, -x, c};
+    case 3: return {-x, 1, c};
+    default: return {x, -1, c};
+  }
+}
+
 /// The frustum planes of the five faces that local point (a, b, c) lies strictly outside of:
 /// bits 5f..5f+4 for face f. A triangle (or box) whose corners share a bit of face f shows
 /// nothing on it (its projection lies beyond that edge of the face, or behind the eye), so

@@ -91,23 +91,19 @@ void lightVertices(MeshedScene& s) {
 
 /// What timeLeft says once the time limit is spent (positive: 0 would mean no limit).
 constexpr double kNoTimeLeft = 1e-9;
-
 /// The gather may take at most this share of the time a time limit leaves after meshing.
 constexpr double kGatherShareOfTimeLeft = 0.5;
 
-/// The final gather if the settings ask for it and it fits the budget: its work is the
-/// elements the gathering vertices' hemicubes draw (estimateGather: every element of the mesh
-/// before refinement, or in an interior those a vertex's room shows). Skipped, the
-/// progressive solve is the answer and shoots as it would without the gather.
+/// The final gather if the settings ask for it and it fits the budget (gatherLeftOut).
+/// Skipped, the progressive solve is the answer and shoots as it would without the gather.
 void decideGather(MeshedScene& s) {
   if (!s.settings.finalGather) return;
   GatherOptions options;
   options.resolution = s.settings.gatherResolution;
   options.seed = s.settings.seed;
   const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.base.get(), s.scene.diagonal(), options);
-  const double work = estimate.work;
-  const double seconds = estimate.seconds(workerCount(0)), left = timeLeft(s);
-  s.gather = work <= kMaxGatherWork && !(left > 0 && seconds > kGatherShareOfTimeLeft * left);
+  const std::string leftOut = gatherLeftOut(estimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
+  s.gather = leftOut.empty();
   if (s.gather) {
     // Iterated to its own solution, the gather needs only a start: no more than
     // kGatherStartMaxShots shots however many patches there are.
@@ -117,24 +113,7 @@ void decideGather(MeshedScene& s) {
     return;
   }
   if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
-  char text[320];
-  if (work > kMaxGatherWork)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped: its hemicubes would draw %.2g vertex-element pairs, more than the "
-                  "%.0e it may cost (a minute or more); the progressive solution is shown at the vertices "
-                  "(coarser elements gather: raise solver.max_element_edge)",
-                  work, kMaxGatherWork);
-  else if (left > kNoTimeLeft)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "
-                  "meshing; the progressive solution is shown at the vertices, shot until the time limit",
-                  seconds, left);
-  else
-    std::snprintf(text, sizeof text,
-                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
-                  "and the ambient term are shown",
-                  s.settings.timeLimit);
-  s.mesh.warnings.push_back(text);
+  s.mesh.warnings.push_back(leftOut);
 }
 
 /// The solver options of the scene's settings, the time limit what meshing left of it.
@@ -156,6 +135,30 @@ int clampNegative(std::vector<glm::dvec3>& B) {
 }
 
 }  // namespace
+
+std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit) {
+  const double seconds = estimate.seconds(workers), oneCore = estimate.seconds(1);
+  char text[320];
+  if (oneCore > kMaxGatherSeconds)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped: its hemicubes would take about %.2g s on one core, more than the %.0f s "
+                  "it may (a minute or more); the progressive solution is shown at the vertices (coarser "
+                  "elements gather: raise solver.max_element_edge)",
+                  oneCore, kMaxGatherSeconds);
+  else if (timeLeft > 0 && timeLeft <= kNoTimeLeft)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
+                  "and the ambient term are shown",
+                  timeLimit);
+  else if (timeLeft > 0 && seconds > kGatherShareOfTimeLeft * timeLeft)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "
+                  "meshing; the progressive solution is shown at the vertices, shot until the time limit",
+                  seconds, timeLeft);
+  else
+    return {};
+  return text;
+}
 
 Scene loadSceneToSolve(const std::string& path) {
   Scene scene = loadScene(path);

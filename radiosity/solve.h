@@ -42,12 +42,12 @@ struct MeshedScene {
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;            ///< what adaptive refinement did
   std::unique_ptr<PatchMesh> base;   ///< the mesh before refinement (null if nothing was refined)
-  /// Whether the solution is gathered at the vertices: settings.finalGather, unless the
-  /// gather would cost more than kMaxGatherWork, or more than half the time limit left once
-  /// meshed (said in a warning).
+  /// Whether the solution is gathered at the vertices: settings.finalGather, unless
+  /// gatherLeftOut says why not (in a warning).
   bool gather = false;
-  /// What the gather would cost: the elements its hemicubes would draw, the factors it would
-  /// keep (estimateGather; zeros with the gather off).
+  /// What the gather would cost: the triangles its hemicubes would draw, the pixels they
+  /// would resolve to elements, the factors it would keep (estimateGather; zeros with the
+  /// gather off).
   GatherEstimate gatherEstimate{};
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
@@ -73,6 +73,10 @@ SolverOptions solverOptions(const Settings& settings, size_t patches);
 /// The seconds of settings.timeLimit the scene has left (0: no limit; else at least 1e-9,
 /// once spent).
 double timeLeft(const MeshedScene& scene);
+/// Why the final gather is left out, as the warning says it, or empty: it would take more
+/// than kMaxGatherSeconds on one core, or meshing spent the time limit (`timeLimit`), or it
+/// would take more than half of what the limit leaves (`timeLeft`; 0: no limit) on `workers`.
+std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& scene, int workers = 0);
 

@@ -13,6 +13,7 @@
 
 #include "mesh/reference_points.h"
 #include "radiosity/final_gather.h"
+#include "radiosity/flat_regions.h"
 #include "radiosity/gather_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
@@ -167,27 +168,48 @@ TEST(FinalGatherTest, ElementsShowTheMeanOfTheirVertices) {
   EXPECT_EQ(s->solution.ambient, glm::dvec3(0.0));
 }
 
-TEST(FinalGatherTest, SkippedWithAWarningBeyondItsBudget) {
-  Scene scene = loadSceneToSolve(test::kData + "fine_box.json");
-  std::vector<std::string> warnings;
-  const Settings settings = resolveSettings(scene, {});
-  const MeshedScene meshed =
-      meshScene(std::move(scene), settings, {false, [&](const std::string& w) { warnings.push_back(w); }});
-  EXPECT_FALSE(meshed.gather);
-  EXPECT_GT(meshed.gatherEstimate.work, kMaxGatherWork);
-  EXPECT_EQ(meshed.settings.hemicubeResolution, kDefaultHemicubeResolution);  // shoots as without the gather
-  EXPECT_EQ(meshed.settings.tolerance, kDefaultTolerance);
-  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
-                          [](const std::string& w) { return w.find("final gather skipped") != std::string::npos; }));
+TEST(FinalGatherTest, LeftOutWithAWarningBeyondItsBudget) {
+  GatherEstimate estimate;
+  estimate.located = (kMaxGatherSeconds + 1) / kGatherSecondsPerLocatedPixel;
+  const std::string over = gatherLeftOut(estimate, 2, 0, 0);
+  EXPECT_NE(over.find("final gather skipped"), std::string::npos) << over;
+  EXPECT_NE(over.find("on one core"), std::string::npos) << over;
+  estimate.located /= 2;
+  EXPECT_EQ(gatherLeftOut(estimate, 2, 0, 0), "");
+  // With a time limit: at most half of what meshing left (here 30.25 s on two cores).
+  EXPECT_EQ(gatherLeftOut(estimate, 2, 61, 300), "");
+  EXPECT_NE(gatherLeftOut(estimate, 2, 60, 300).find("30 s of the 60 s the time limit leaves"), std::string::npos)
+      << gatherLeftOut(estimate, 2, 60, 300);
+  EXPECT_NE(gatherLeftOut(estimate, 2, 1e-9, 300).find("and no shot"), std::string::npos);
 }
 
-/// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather's
-/// work is every gathering vertex times every element of the mesh before refinement.
+/// A 95 000-element box whose hemicubes would have drawn every element (4.7e9 vertex-element
+/// pairs, over the budget: it was shot at the full defaults instead) draws six walls' outlines:
+/// the gather is cheap and runs.
+TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
+  Scene scene = loadSceneToSolve(test::kData + "fine_box.json");
+  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  EXPECT_TRUE(meshed.gather);
+  const double vertices = double(meshed.mesh.mesh.n_vertices());
+  EXPECT_GT(vertices, 40000);
+  EXPECT_LT(meshed.gatherEstimate.drawn, 20 * vertices);
+  EXPECT_LT(meshed.gatherEstimate.seconds(1), 0.2 * kMaxGatherSeconds);  // 12 s: 1.5e8 pixels
+}
+
+/// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather
+/// sorts every triangle it draws to its faces from every gathering vertex, and resolves at
+/// most every pixel of every hemicube to its element.
 TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
   ASSERT_TRUE(s->meshed.gather);
-  const PatchMesh& drawn = *s->meshed.base;
-  EXPECT_EQ(s->meshed.gatherEstimate.work, double(s->solution.gather.points) * drawn.elementCount());
+  const PatchMesh& base = *s->meshed.base;
+  const double points = double(s->solution.gather.points);
+  const FlatRegions regions(base, s->meshed.scene.diagonal());
+  EXPECT_LT(regions.drawn().elementCount() * 20, size_t(base.elementCount()));
+  EXPECT_EQ(s->meshed.gatherEstimate.drawn, points * double(regions.drawn().elementCount()));
+  const int R = kDefaultGatherResolution;
+  EXPECT_LE(s->meshed.gatherEstimate.located, points * 3 * R * R);
+  EXPECT_GT(s->meshed.gatherEstimate.located, points * R * R);
 }
 
 /// With rows that fit its memory, the gather is iterated to its own solution from any start:

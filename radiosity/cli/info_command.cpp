@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "mesh/number_text.h"
+#include "mesh/parallel.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
@@ -131,9 +132,13 @@ std::string gatherLine(const MeshedScene& meshed) {
   const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
   const std::string others = meshed.base ? " (the other " + std::to_string(meshed.mesh.mesh.n_vertices() - drawn.mesh.n_vertices()) +
                                                ", added by refinement, interpolate)" : "";
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.2g", meshed.gatherEstimate.seconds(workerCount(0)));
   return "at " + std::to_string(drawn.mesh.n_vertices()) + " vertices" + others + " over " +
          std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution) +
-         ", drawing " + shortNumberText(std::round(meshed.gatherEstimate.work)) + " elements in all, keeping " +
+         ", drawing " + shortNumberText(std::round(meshed.gatherEstimate.drawn)) + " triangles and resolving " +
+         shortNumberText(std::round(meshed.gatherEstimate.located)) + " pixels to elements in all (about " +
+         seconds + " s), keeping " +
          shortNumberText(std::round(meshed.gatherEstimate.factors)) + " factors" +
          (meshed.gatherEstimate.iterates(GatherOptions{}) ? "" : " (over its memory: gathered once)");
 }

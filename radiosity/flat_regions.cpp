@@ -1,0 +1,260 @@
+#include "radiosity/flat_regions.h"
+
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/geometry.h"
+#include "mesh/patch_mesh.h"
+#include "mesh/polygon_mesher.h"
+
+namespace rad {
+namespace {
+
+/// Two elements across an edge are in one plane when their normals differ by less than this
+/// (1 − cos of about 4e-6 rad: rounding of one plane's normal, not a tessellated curve)...
+constexpr double kFlatCosine = 1e-11;
+/// ...and every corner lies this close (relative to the scene size) to the region's plane,
+/// so that a region cannot creep round a gentle curve.
+constexpr double kFlatDistance = 1e-9;
+/// A boundary vertex is dropped from the outline when it lies this close (relative to its
+/// neighbours' distances) to the line between them: a point that split a straight edge.
+constexpr double kCollinear = 1e-9;
+
+/// The elements grouped into flat regions (connected across edges, one plane).
+std::vector<std::vector<int>> flatGroups(const PatchMesh& mesh, double sceneSize, std::vector<int>& groupOf) {
+  const TriMesh& m = mesh.mesh;
+  const int n = mesh.elementCount();
+  groupOf.assign(size_t(n), -1);
+  std::vector<std::vector<int>> groups;
+  std::vector<int> stack;
+  for (int seed = 0; seed < n; ++seed) {
+    if (groupOf[size_t(seed)] >= 0) continue;
+    const int g = int(groups.size());
+    std::vector<int>& group = groups.emplace_back();
+    const glm::dvec3 normal = mesh.normal(seed), origin = mesh.corners(seed)[0];
+    auto flat = [&](int e) {
+      if (1 - glm::dot(mesh.normal(e), normal) > kFlatCosine) return false;
+      for (const glm::dvec3& c : mesh.corners(e))
+        if (std::abs(glm::dot(c - origin, normal)) > kFlatDistance * sceneSize) return false;
+      return true;
+    };
+    groupOf[size_t(seed)] = g;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      group.push_back(e);
+      for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {
+        const auto other = m.opposite_face_handle(h);
+        if (!other.is_valid() || groupOf[size_t(other.idx())] >= 0 || !flat(other.idx())) continue;
+        groupOf[size_t(other.idx())] = g;
+        stack.push_back(other.idx());
+      }
+    }
+  }
+  return groups;
+}
+
+/// Loops that pass a vertex twice, split there into loops that do not.
+std::vector<std::vector<int>> splitAtPinches(std::vector<std::vector<int>> loops) {
+  std::vector<std::vector<int>> out;
+  while (!loops.empty()) {
+    std::vector<int> loop = std::move(loops.back());
+    loops.pop_back();
+    std::unordered_map<int, size_t> at;
+    bool split = false;
+    for (size_t k = 0; k < loop.size() && !split; ++k) {
+      const auto [it, added] = at.emplace(loop[k], k);
+      if (added) continue;
+      // loop[it->second .. k) is a loop of its own; the rest goes on without it.
+      loops.emplace_back(loop.begin() + std::ptrdiff_t(it->second), loop.begin() + std::ptrdiff_t(k));
+      loop.erase(loop.begin() + std::ptrdiff_t(it->second), loop.begin() + std::ptrdiff_t(k));
+      loops.push_back(std::move(loop));
+      split = true;
+    }
+    if (!split && loop.size() >= 3) out.push_back(std::move(loop));
+  }
+  return out;
+}
+
+/// The loop without its vertices that lie on the straight line between their neighbours.
+std::vector<int> withoutCollinear(const std::vector<int>& loop, const std::vector<glm::dvec2>& at) {
+  std::vector<int> kept;
+  const size_t n = loop.size();
+  for (size_t k = 0; k < n; ++k) {
+    const glm::dvec2 a = at[size_t(kept.empty() ? loop[(k + n - 1) % n] : kept.back())];
+    const glm::dvec2 b = at[size_t(loop[k])], c = at[size_t(loop[(k + 1) % n])];
+    const glm::dvec2 ab = b - a, bc = c - b;
+    const double cross = ab.x * bc.y - ab.y * bc.x;
+    const bool onLine = std::abs(cross) <= kCollinear * glm::length(ab) * glm::length(bc) && glm::dot(ab, bc) > 0;
+    if (!onLine) kept.push_back(loop[k]);
+  }
+  return kept;
+}
+
+/// The line through a and b as (A, B, C) with A·x + B·y + C the signed distance, positive
+/// on the left (inside a counter-clockwise triangle); zero for a point.
+glm::dvec3 edgeLine(const glm::dvec2& a, const glm::dvec2& b) {
+  const glm::dvec2 d = b - a;
+  const double length = glm::length(d);
+  if (length == 0) return glm::dvec3(0.0);
+  const double A = -d.y / length, B = d.x / length;
+  return {A, B, -(A * a.x + B * a.y)};
+}
+
+}  // namespace
+
+FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
+  const TriMesh& m = mesh.mesh;
+  elementCount_ = size_t(mesh.elementCount());
+  std::vector<int> groupOf;
+  const std::vector<std::vector<int>> groups = flatGroups(mesh, sceneSize, groupOf);
+  std::vector<int> placed(m.n_vertices(), -1);  // mesh vertex → drawn position
+  auto position = [&](int v) {
+    if (placed[size_t(v)] < 0) {
+      placed[size_t(v)] = int(drawn_.positions.size());
+      drawn_.positions.push_back(PatchMesh::toGlm(m.point(TriMesh::VertexHandle(v))));
+    }
+    return uint32_t(placed[size_t(v)]);
+  };
+  auto drawElement = [&](int e) {
+    for (auto v : m.fv_range(TriMesh::FaceHandle(e))) drawn_.indices.push_back(position(v.idx()));
+    drawn_.normals.push_back(mesh.normal(e));
+    drawnElement_.push_back(e);
+  };
+  std::vector<glm::dvec2> at(m.n_vertices());  // the current region's vertices in its frame
+  std::vector<uint32_t> slotOf(elementCount_, kNone);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::vector<int>& group = groups[g];
+    if (group.size() == 1) {
+      drawElement(group[0]);
+      continue;
+    }
+    Region region;
+    region.normal = mesh.normal(group[0]);
+    const PlaneFrame frame = planeFrame(mesh.corners(group[0])[0], region.normal);
+    region.origin = frame.origin, region.u = frame.u, region.v = frame.v;
+    if (glm::dot(glm::cross(region.u, region.v), region.normal) < 0) region.v = -region.v;
+    auto local = [&](const glm::dvec3& p) {
+      return glm::dvec2(glm::dot(p - region.origin, region.u), glm::dot(p - region.origin, region.v));
+    };
+    for (int e : group)
+      for (auto v : m.fv_range(TriMesh::FaceHandle(e))) at[size_t(v.idx())] = local(PatchMesh::toGlm(m.point(v)));
+    // The outline's constrained triangulation, if it closes and takes fewer triangles.
+    Polygon2 outline;
+    for (const auto& loop : splitAtPinches(mesh.boundaryLoops(group, [&](int e) { return groupOf[size_t(e)] == int(g); }))) {
+      const std::vector<int> corners = withoutCollinear(loop, at);
+      if (corners.size() < 3) continue;
+      auto& ring = outline.rings.emplace_back();
+      for (int v : corners) ring.push_back(at[size_t(v)]);
+      outline.ids.push_back(corners);
+    }
+    Triangulation2 triangles;
+    try {
+      if (!outline.rings.empty()) triangles = triangulatePolygon(outline, "flat region");
+    } catch (const std::exception&) {
+      triangles = Triangulation2();  // crossing rings (rounding): draw the elements
+    }
+    bool usable = !triangles.triangles.empty() && triangles.triangles.size() < group.size();
+    for (int id : triangles.ids) usable = usable && id >= 0;
+    if (!usable) {
+      for (int e : group) drawElement(e);
+      continue;
+    }
+    const int32_t code = -1 - int32_t(regions_.size());
+    for (const auto& t : triangles.triangles) {
+      for (int k : t) drawn_.indices.push_back(position(triangles.ids[size_t(k)]));
+      drawn_.normals.push_back(region.normal);
+      drawnElement_.push_back(code);
+    }
+    // Its elements' edges, and the grid over them: about one cell per element.
+    region.firstSlot = uint32_t(slots_.size());
+    region.slotCount = uint32_t(group.size());
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (size_t k = 0; k < group.size(); ++k) slotOf[size_t(group[k])] = region.firstSlot + uint32_t(k);
+    for (int e : group) {
+      Slot slot{};
+      slot.element = uint32_t(e);
+      std::array<glm::dvec2, 3> c;
+      int k = 0;
+      for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {  // edge k: corner k to corner k + 1
+        c[size_t(k)] = at[size_t(m.from_vertex_handle(h).idx())];
+        const auto other = m.opposite_face_handle(h);
+        slot.across[size_t(k++)] = other.is_valid() && groupOf[size_t(other.idx())] == int(g) ? slotOf[size_t(other.idx())] : kNone;
+      }
+      slot.edges = {edgeLine(c[0], c[1]), edgeLine(c[1], c[2]), edgeLine(c[2], c[0])};
+      slots_.push_back(slot);
+      for (const glm::dvec2& p : c) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    const glm::dvec2 extent = glm::max(hi - lo, glm::dvec2(1e-300));
+    const double cell = std::sqrt(extent.x * extent.y / double(group.size()));
+    region.lo = lo;
+    region.inverseCell = 1 / std::max({cell, extent.x / double(group.size()), extent.y / double(group.size())});
+    region.columns = std::max(1, int(std::ceil(extent.x * region.inverseCell)));
+    region.rows = std::max(1, int(std::ceil(extent.y * region.inverseCell)));
+    region.firstCell = uint32_t(cellStart_.size());
+    const size_t cells = size_t(region.columns) * size_t(region.rows);
+    std::vector<std::vector<uint32_t>> lists(cells);
+    for (uint32_t s = region.firstSlot; s < region.firstSlot + region.slotCount; ++s) {
+      glm::dvec2 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
+      for (auto v : m.fv_range(TriMesh::FaceHandle(int(slots_[s].element))))
+        a = glm::min(a, at[size_t(v.idx())]), b = glm::max(b, at[size_t(v.idx())]);
+      const int c0 = std::clamp(int((a.x - lo.x) * region.inverseCell), 0, region.columns - 1);
+      const int c1 = std::clamp(int((b.x - lo.x) * region.inverseCell), 0, region.columns - 1);
+      const int r0 = std::clamp(int((a.y - lo.y) * region.inverseCell), 0, region.rows - 1);
+      const int r1 = std::clamp(int((b.y - lo.y) * region.inverseCell), 0, region.rows - 1);
+      for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c) lists[size_t(r) * size_t(region.columns) + size_t(c)].push_back(s);
+    }
+    for (const auto& list : lists) {
+      cellStart_.push_back(uint32_t(cellSlots_.size()));
+      cellSlots_.insert(cellSlots_.end(), list.begin(), list.end());
+    }
+    regions_.push_back(region);
+  }
+  cellStart_.push_back(uint32_t(cellSlots_.size()));
+}
+
+FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d,
+                                          const glm::dvec3& step) const {
+  const Region& r = regions_[size_t(-1 - shows)];
+  const glm::dvec3 w = eye - r.origin;
+  return {glm::dot(w, r.u),        glm::dot(w, r.v),        glm::dot(w, r.normal),
+          glm::dot(d, r.normal),    glm::dot(d, r.u),        glm::dot(d, r.v),
+          glm::dot(step, r.normal), glm::dot(step, r.u),     glm::dot(step, r.v)};
+}
+
+uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
+  const Region& r = regions_[size_t(-1 - shows)];
+  int edge = 0;
+  if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
+    for (int step = 0; step <= kWalk && hint != kNone; ++step) {
+      if (inside(hint, p, edge) >= 0) return slots_[hint].element;
+      hint = slots_[hint].across[size_t(edge)];
+    }
+  const int column = std::clamp(int((p.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
+  const int row = std::clamp(int((p.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
+  const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);
+  uint32_t best = r.firstSlot;
+  double bestInside = -std::numeric_limits<double>::infinity();
+  auto consider = [&](uint32_t s) {
+    const double d = inside(s, p, edge);
+    if (d > bestInside) bestInside = d, best = s;
+    return d >= 0;
+  };
+  for (uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k)
+    if (consider(cellSlots_[k])) {
+      hint = cellSlots_[k];
+      return slots_[hint].element;
+    }
+  if (cellStart_[cell] == cellStart_[cell + 1])  // an empty cell (a hole), reached by rounding
+    for (uint32_t s = r.firstSlot; s < r.firstSlot + r.slotCount; ++s) consider(s);
+  hint = best;
+  return slots_[best].element;
+}
+
+}  // namespace rad

@@ -1,0 +1,103 @@
+#pragma once
+// A mesh's elements as a hemicube draws them: each flat region (elements of one surface side
+// that meet edge to edge in one plane: a wall, a block's face, a tabletop) as the constrained
+// triangulation of its outline, a few large triangles instead of its hundreds of elements, and
+// each pixel's element found afterwards under the pixel centre's ray, by a grid over the
+// region. The item buffer then shows the element whose triangle holds the point the pixel
+// centre's ray meets, which is what drawing every element shows (up to the raster's
+// sub-pixel snapping of element edges), while the raster's cost follows the outlines, not the
+// elements: a finely meshed room costs about what its coarse model costs.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "radiosity/hemicube.h"
+
+namespace rad {
+
+class PatchMesh;
+
+class FlatRegions {
+ public:
+  /// The regions of `mesh`'s elements. sceneSize: the scene diagonal (flatness tolerance).
+  FlatRegions(const PatchMesh& mesh, double sceneSize);
+
+  /// The triangles drawn: regions' outline triangles, and the elements of regions left as
+  /// they are (one element, or an outline that would not triangulate into fewer triangles).
+  const HemicubeGeometry& drawn() const { return drawn_; }
+  size_t elementCount() const { return elementCount_; }
+  size_t regionCount() const { return regions_.size(); }
+
+  /// What drawn triangle t shows: an element (≥ 0), or -1 - r for region r's outline, whose
+  /// element at a pixel locate() finds.
+  int32_t shows(uint32_t t) const { return drawnElement_[t]; }
+  /// Where the rays eye + s·(d + k·step), k = 0, 1, 2, ... (a row of pixel centres) meet
+  /// region r's plane, in the region's frame: a projective map of k.
+  struct RowWalk {
+    double wu, wv, height;  // the eye in the region's frame, its height above the plane
+    double towards, u, v;   // the ray direction's components along the normal, u and v at k = 0
+    double dTowards, du, dv;  // and their steps per k
+    glm::dvec2 at(int k) const {
+      const double t = towards + k * dTowards;
+      const double s = t < 0 ? -height / t : 0;  // ≥ 0 but for rounding at grazing rays
+      return {wu + s * (u + k * du), wv + s * (v + k * dv)};
+    }
+  };
+  /// The RowWalk of region r (shows() of one of its triangles) from `eye`.
+  RowWalk rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d, const glm::dvec3& step) const;
+  /// The element of region r that holds point p of its frame, or the nearest one (a ray
+  /// may miss by rounding at the outline). `hint`: where the last search ended (any value to
+  /// begin with), walked from first, as neighbouring pixels mostly show one element; updated.
+  uint32_t locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const;
+
+ private:
+  /// A region drawn by its outline: its plane frame, its elements' corners in that frame and
+  /// a grid of the elements over their bounding box.
+  struct Region {
+    glm::dvec3 origin, u, v, normal;
+    glm::dvec2 lo{0.0};
+    double inverseCell = 0;
+    int columns = 1, rows = 1;
+    uint32_t firstCell = 0;  ///< cells_[firstCell + row·columns + column]
+    uint32_t firstSlot = 0, slotCount = 0;  ///< its elements' slots
+  };
+  /// An element of a region: its edges' lines a·x + b·y + c (unit normal (a, b), ≥ 0 inside;
+  /// edge k from corner k to corner k + 1) and the slot across each edge (kNone: none).
+  struct Slot {
+    std::array<glm::dvec3, 3> edges;
+    std::array<uint32_t, 3> across;
+    uint32_t element;
+  };
+  static constexpr uint32_t kNone = ~0u;
+  /// Steps from slot to slot across the edge p lies farthest beyond, from a neighbouring
+  /// pixel's element, before the grid is searched instead.
+  static constexpr int kWalk = 4;
+
+  /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
+  /// and across which edge that is (`edge`).
+  double inside(uint32_t s, const glm::dvec2& p, int& edge) const {
+    const Slot& slot = slots_[s];
+    double least = slot.edges[0].x * p.x + slot.edges[0].y * p.y + slot.edges[0].z;
+    edge = 0;
+    for (int k = 1; k < 3; ++k) {
+      const double d = slot.edges[size_t(k)].x * p.x + slot.edges[size_t(k)].y * p.y + slot.edges[size_t(k)].z;
+      if (d < least) least = d, edge = k;
+    }
+    return least;
+  }
+
+  HemicubeGeometry drawn_;
+  size_t elementCount_ = 0;
+  std::vector<int32_t> drawnElement_;   ///< per drawn triangle: its element, or -1 - its region
+  std::vector<Region> regions_;
+  std::vector<Slot> slots_;
+  std::vector<uint32_t> cellStart_;     ///< per cell of every region, its first entry in cellSlots_ (+ one end)
+  std::vector<uint32_t> cellSlots_;
+};
+
+}  // namespace rad
