@@ -106,6 +106,11 @@ glm::dvec3 edgeLine(const glm::dvec2& a, const glm::dvec2& b) {
   return {A, B, -(A * a.x + B * a.y)};
 }
 
+/// Edge k's line into lane k of a slot.
+void setEdge(std::array<float, 4>& a, std::array<float, 4>& b, std::array<float, 4>& c, size_t k, const glm::dvec3& line) {
+  a[k] = float(line.x), b[k] = float(line.y), c[k] = float(line.z);
+}
+
 }  // namespace
 
 FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
@@ -186,7 +191,8 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
         const auto other = m.opposite_face_handle(h);
         slot.across[size_t(k++)] = other.is_valid() && groupOf[size_t(other.idx())] == int(g) ? slotOf[size_t(other.idx())] : kNone;
       }
-      slot.edges = {edgeLine(c[0], c[1]), edgeLine(c[1], c[2]), edgeLine(c[2], c[0])};
+      for (size_t k = 0; k < 3; ++k) setEdge(slot.a, slot.b, slot.c, k, edgeLine(c[k], c[(k + 1) % 3]));
+      setEdge(slot.a, slot.b, slot.c, 3, glm::dvec3(0, 0, std::numeric_limits<float>::max()));
       slots_.push_back(slot);
       for (const glm::dvec2& p : c) lo = glm::min(lo, p), hi = glm::max(hi, p);
     }
@@ -230,19 +236,20 @@ FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, 
 
 uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
   const Region& r = regions_[size_t(-1 - shows)];
+  const float x = float(p.x), y = float(p.y);
   int edge = 0;
   if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
     for (int step = 0; step <= kWalk && hint != kNone; ++step) {
-      if (inside(hint, p, edge) >= 0) return slots_[hint].element;
+      if (inside(hint, x, y, edge) >= 0) return slots_[hint].element;
       hint = slots_[hint].across[size_t(edge)];
     }
-  const int column = std::clamp(int((p.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
-  const int row = std::clamp(int((p.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
+  const int column = std::clamp(int(std::clamp((p.x - r.lo.x) * r.inverseCell, -1.0, double(r.columns))), 0, r.columns - 1);
+  const int row = std::clamp(int(std::clamp((p.y - r.lo.y) * r.inverseCell, -1.0, double(r.rows))), 0, r.rows - 1);
   const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);
   uint32_t best = r.firstSlot;
-  double bestInside = -std::numeric_limits<double>::infinity();
+  float bestInside = -std::numeric_limits<float>::infinity();
   auto consider = [&](uint32_t s) {
-    const double d = inside(s, p, edge);
+    const float d = inside(s, x, y, edge);
     if (d > bestInside) bestInside = d, best = s;
     return d >= 0;
   };

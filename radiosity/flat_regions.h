@@ -66,10 +66,12 @@ class FlatRegions {
     uint32_t firstCell = 0;  ///< cells_[firstCell + row·columns + column]
     uint32_t firstSlot = 0, slotCount = 0;  ///< its elements' slots
   };
-  /// An element of a region: its edges' lines a·x + b·y + c (unit normal (a, b), ≥ 0 inside;
-  /// edge k from corner k to corner k + 1) and the slot across each edge (kNone: none).
-  struct Slot {
-    std::array<glm::dvec3, 3> edges;
+  /// An element of a region: its edges' lines a·x + b·y + c in the region's frame (unit
+  /// normal (a, b), ≥ 0 inside; edge k from corner k to corner k + 1; lane 3 never outside),
+  /// in single precision (a pixel's point is found to about 1e-7 of the region, far below its
+  /// elements' size), the slot across each edge (kNone: none) and its element: a cache line.
+  struct alignas(64) Slot {
+    std::array<float, 4> a, b, c;
     std::array<uint32_t, 3> across;
     uint32_t element;
   };
@@ -80,12 +82,12 @@ class FlatRegions {
 
   /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
   /// and across which edge that is (`edge`).
-  double inside(uint32_t s, const glm::dvec2& p, int& edge) const {
+  float inside(uint32_t s, float x, float y, int& edge) const {
     const Slot& slot = slots_[s];
-    double least = slot.edges[0].x * p.x + slot.edges[0].y * p.y + slot.edges[0].z;
+    float least = slot.a[0] * x + slot.b[0] * y + slot.c[0];
     edge = 0;
     for (int k = 1; k < 3; ++k) {
-      const double d = slot.edges[size_t(k)].x * p.x + slot.edges[size_t(k)].y * p.y + slot.edges[size_t(k)].z;
+      const float d = slot.a[size_t(k)] * x + slot.b[size_t(k)] * y + slot.c[size_t(k)];
       if (d < least) least = d, edge = k;
     }
     return least;
