@@ -34,10 +34,11 @@ namespace rad {
 /// (the gather's cost is mostly drawing the elements, not the pixels).
 constexpr int kDefaultGatherResolution = 32;
 /// The gather is skipped (with a warning) when its hemicubes would take longer than this on
-/// one core of this machine class (estimateGather): a minute or more on two. Skipping it costs
-/// more at scale (the progressive solve then shoots at the full defaults: Modern Hall split to
-/// 100k triangles, shot to 1e-3, took 11 minutes; gathered, 91 s), so the budget is generous.
-constexpr double kMaxGatherSeconds = 120;
+/// one core of this machine class (estimateGather): a quarter of an hour on two. Skipping it
+/// costs more at scale, as the progressive solve then shoots at the full defaults (Modern Hall
+/// split to 100k triangles, shot to 1e-3, took 11 minutes; gathered, its whole solve 80 s), so
+/// the budget only keeps out a gather of hours.
+constexpr double kMaxGatherSeconds = 1800;
 /// The seconds one triangle a hemicube sorts to its faces costs on one core (CornellBox-Original
 /// drawing its elements: 4 592 hemicubes over 7 690 elements in 0.52 s on two)...
 constexpr double kGatherSecondsPerTriangle = 3e-8;
@@ -59,9 +60,9 @@ struct GatherOptions {
   double tolerance = 1e-5;        ///< relative residual of the vertex system
   int maxIterations = 200;
   /// Memory for the vertices' factors, kept to iterate; a scene that needs more is gathered
-  /// once over the solved elements instead. 2 GiB: Modern Hall split to 300k triangles keeps
-  /// about 1.2 GB (a vertex's row holds what its 32×32 hemicube shows, some 660 elements).
-  size_t memoryBytes = size_t(2) << 30;
+  /// once over the solved elements instead. 4 GiB: Modern Hall split to 1M triangles keeps
+  /// about 3.4 GB (a vertex's row holds what its 32×32 hemicube shows, some 600 elements).
+  size_t memoryBytes = size_t(4) << 30;
   /// A time limit: hemicubes not rendered by then are abandoned (the gather gives up) and the
   /// iteration stops where it is.
   std::optional<std::chrono::steady_clock::time_point> deadline;

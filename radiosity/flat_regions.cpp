@@ -237,12 +237,13 @@ FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, 
 uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
   const Region& r = regions_[size_t(-1 - shows)];
   const float x = float(p.x), y = float(p.y);
-  int edge = 0;
   if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
     for (int step = 0; step <= kWalk && hint != kNone; ++step) {
-      if (inside(hint, x, y, edge) >= 0) return slots_[hint].element;
-      hint = slots_[hint].across[size_t(edge)];
+      const uint32_t beyond = outside(hint, x, y);
+      if (!beyond) return slots_[hint].element;
+      hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
     }
+  int edge = 0;
   const int column = std::clamp(int(std::clamp((p.x - r.lo.x) * r.inverseCell, -1.0, double(r.columns))), 0, r.columns - 1);
   const int row = std::clamp(int(std::clamp((p.y - r.lo.y) * r.inverseCell, -1.0, double(r.rows))), 0, r.rows - 1);
   const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);

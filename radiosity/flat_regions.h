@@ -13,6 +13,10 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -80,6 +84,20 @@ class FlatRegions {
   /// pixel's element, before the grid is searched instead.
   static constexpr int kWalk = 4;
 
+  /// The edges of slot s's triangle that point (x, y) lies beyond (bit k: edge k).
+  uint32_t outside(uint32_t s, float x, float y) const {
+    const Slot& slot = slots_[s];
+#if defined(__SSE2__)
+    const __m128 e = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(slot.a.data()), _mm_set1_ps(x)),
+                                           _mm_mul_ps(_mm_load_ps(slot.b.data()), _mm_set1_ps(y))),
+                                _mm_load_ps(slot.c.data()));
+    return uint32_t(_mm_movemask_ps(_mm_cmplt_ps(e, _mm_setzero_ps())));
+#else
+    uint32_t bits = 0;
+    for (size_t k = 0; k < 3; ++k) bits |= uint32_t(slot.a[k] * x + slot.b[k] * y + slot.c[k] < 0) << k;
+    return bits;
+#endif
+  }
   /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
   /// and across which edge that is (`edge`).
   float inside(uint32_t s, float x, float y, int& edge) const {

@@ -142,7 +142,7 @@ std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double ti
   if (oneCore > kMaxGatherSeconds)
     std::snprintf(text, sizeof text,
                   "final gather skipped: its hemicubes would take about %.2g s on one core, more than the %.0f s "
-                  "it may (a minute or more); the progressive solution is shown at the vertices (coarser "
+                  "it may (a quarter of an hour on two); the progressive solution is shown at the vertices (coarser "
                   "elements gather: raise solver.max_element_edge)",
                   oneCore, kMaxGatherSeconds);
   else if (timeLeft > 0 && timeLeft <= kNoTimeLeft)

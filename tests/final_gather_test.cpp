@@ -176,10 +176,11 @@ TEST(FinalGatherTest, LeftOutWithAWarningBeyondItsBudget) {
   EXPECT_NE(over.find("on one core"), std::string::npos) << over;
   estimate.located /= 2;
   EXPECT_EQ(gatherLeftOut(estimate, 2, 0, 0), "");
-  // With a time limit: at most half of what meshing left (here 30.25 s on two cores).
-  EXPECT_EQ(gatherLeftOut(estimate, 2, 61, 300), "");
-  EXPECT_NE(gatherLeftOut(estimate, 2, 60, 300).find("30 s of the 60 s the time limit leaves"), std::string::npos)
-      << gatherLeftOut(estimate, 2, 60, 300);
+  // With a time limit: at most half of what meshing left.
+  const double seconds = estimate.seconds(2);
+  EXPECT_EQ(gatherLeftOut(estimate, 2, 2 * seconds + 1, 1e5), "");
+  const std::string late = gatherLeftOut(estimate, 2, 2 * seconds - 1, 1e5);
+  EXPECT_NE(late.find("the time limit leaves after meshing"), std::string::npos) << late;
   EXPECT_NE(gatherLeftOut(estimate, 2, 1e-9, 300).find("and no shot"), std::string::npos);
 }
 
@@ -193,7 +194,8 @@ TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
   const double vertices = double(meshed.mesh.mesh.n_vertices());
   EXPECT_GT(vertices, 40000);
   EXPECT_LT(meshed.gatherEstimate.drawn, 20 * vertices);
-  EXPECT_LT(meshed.gatherEstimate.seconds(1), 0.2 * kMaxGatherSeconds);  // 12 s: 1.5e8 pixels
+  // 12 s on one core (1.5e8 pixels resolved); drawing every element, 4.7e9 pairs were 141 s.
+  EXPECT_LT(meshed.gatherEstimate.seconds(1), 30);
 }
 
 /// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather
