@@ -6,14 +6,19 @@
 namespace rad {
 
 HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize,
-                                 unsigned seed, int workers, int emitterResolution)
-    : mesh_(mesh), geometry_(HemicubeGeometry::fromMesh(mesh)), seed_(seed) {
+                                 unsigned seed, int workers, int emitterResolution, bool regions)
+    : mesh_(mesh), seed_(seed) {
+  if (regions)
+    regions_ = std::make_unique<FlatRegions>(mesh, sceneSize);
+  else
+    geometry_ = HemicubeGeometry::fromMesh(mesh);
+  auto hemicube = [&](int R) {
+    return regions_ ? std::make_unique<Hemicube>(*regions_, R, sceneSize) : std::make_unique<Hemicube>(geometry_, R, sceneSize);
+  };
   workers = workerCount(workers);
-  for (int w = 0; w < workers; ++w)
-    hemicubes_.push_back(std::make_unique<Hemicube>(geometry_, resolution, sceneSize));
+  for (int w = 0; w < workers; ++w) hemicubes_.push_back(hemicube(resolution));
   if (emitterResolution > 0 && emitterResolution != resolution)
-    for (int w = 0; w < workers; ++w)
-      emitterHemicubes_.push_back(std::make_unique<Hemicube>(geometry_, emitterResolution, sceneSize));
+    for (int w = 0; w < workers; ++w) emitterHemicubes_.push_back(hemicube(emitterResolution));
   for (int p = 0; p < int(mesh.patches.size()); ++p) emits_.push_back(mesh.emits(p));
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "radiosity/flat_regions.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/shooter_samples.h"
 
@@ -29,9 +30,10 @@ class FactorSource {
 class HemicubeFactors : public FactorSource {
  public:
   /// workers: hemicubes that may render at once (0: one per hardware thread).
-  /// emitterResolution: for emitting patches (0: `resolution`).
+  /// emitterResolution: for emitting patches (0: `resolution`). regions: draw the mesh's flat
+  /// regions and resolve pixels to elements (FlatRegions) instead of drawing every element.
   HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed,
-                  int workers = 0, int emitterResolution = 0);
+                  int workers = 0, int emitterResolution = 0, bool regions = false);
   void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
                int worker = 0) override;
   int workers() const override { return int(hemicubes_.size()); }
@@ -39,6 +41,7 @@ class HemicubeFactors : public FactorSource {
  private:
   const PatchMesh& mesh_;
   HemicubeGeometry geometry_;
+  std::unique_ptr<FlatRegions> regions_;                      // if drawn
   std::vector<std::unique_ptr<Hemicube>> hemicubes_;         // one per worker
   std::vector<std::unique_ptr<Hemicube>> emitterHemicubes_;  // one per worker, if finer
   std::vector<bool> emits_;                                   // per patch

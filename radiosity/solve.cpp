@@ -203,8 +203,9 @@ SolverOptions solverOptions(const Settings& settings, size_t patches) {
 }
 
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& s, int workers) {
+  // With the gather on, the shots are only its start: their hemicubes draw flat regions too.
   return std::make_unique<HemicubeFactors>(s.mesh, s.settings.hemicubeResolution, s.scene.diagonal(),
-                                           s.settings.seed, workers, s.settings.emitterHemicubeResolution);
+                                           s.settings.seed, workers, s.settings.emitterHemicubeResolution, s.gather);
 }
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)

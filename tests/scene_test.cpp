@@ -36,7 +36,9 @@ TEST(SceneTest, EveryShippedSceneLoadsAndMeshes) {
     Scene scene = loadScene(entry.path().string());
     EXPECT_TRUE(scene.hasEmitter()) << entry.path();
     // Every scene names its camera but the one-line scene of a downloaded OBJ, as users write it.
-    if (entry.path().stem() != "cornell_original") EXPECT_TRUE(scene.camera.has_value()) << entry.path();
+    if (entry.path().stem() != "cornell_original") {
+      EXPECT_TRUE(scene.camera.has_value()) << entry.path();
+    }
     PatchMesh mesh = buildPatchMesh(scene, {scene.diagonal() / 10, scene.diagonal() / 5});
     EXPECT_GT(mesh.elementCount(), 0) << entry.path();
   }
