@@ -111,6 +111,31 @@ void setEdge(std::array<float, 4>& a, std::array<float, 4>& b, std::array<float,
   a[k] = float(line.x), b[k] = float(line.y), c[k] = float(line.z);
 }
 
+
+/// The constrained triangulation of a region's outline (its vertices' frame coordinates in
+/// `at`), if it closes, triangulates and takes fewer triangles than the region has elements;
+/// else empty (the region is drawn as its elements).
+Triangulation2 outlineTriangulation(const PatchMesh& mesh, const std::vector<int>& group, int g,
+                                    const std::vector<int>& groupOf, const std::vector<glm::dvec2>& at) {
+  Polygon2 outline;
+  for (const auto& loop : splitAtPinches(mesh.boundaryLoops(group, [&](int e) { return groupOf[size_t(e)] == g; }))) {
+    const std::vector<int> corners = withoutCollinear(loop, at);
+    if (corners.size() < 3) continue;
+    auto& ring = outline.rings.emplace_back();
+    for (int v : corners) ring.push_back(at[size_t(v)]);
+    outline.ids.push_back(corners);
+  }
+  Triangulation2 triangles;
+  try {
+    if (!outline.rings.empty()) triangles = triangulatePolygon(outline, "flat region");
+  } catch (const std::exception&) {
+    return {};  // rings that cross by rounding
+  }
+  bool usable = !triangles.triangles.empty() && triangles.triangles.size() < group.size();
+  for (int id : triangles.ids) usable = usable && id >= 0;
+  return usable ? triangles : Triangulation2();
+}
+
 }  // namespace
 
 FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
@@ -119,17 +144,22 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
   std::vector<int> groupOf;
   const std::vector<std::vector<int>> groups = flatGroups(mesh, sceneSize, groupOf);
   std::vector<int> placed(m.n_vertices(), -1);  // mesh vertex → drawn position
-  auto position = [&](int v) {
-    if (placed[size_t(v)] < 0) {
-      placed[size_t(v)] = int(drawn_.positions.size());
-      drawn_.positions.push_back(PatchMesh::toGlm(m.point(TriMesh::VertexHandle(v))));
+  auto draw = [&](const std::array<int, 3>& corners, const glm::dvec3& normal, int32_t shows) {
+    for (int v : corners) {
+      if (placed[size_t(v)] < 0) {
+        placed[size_t(v)] = int(drawn_.positions.size());
+        drawn_.positions.push_back(PatchMesh::toGlm(m.point(TriMesh::VertexHandle(v))));
+      }
+      drawn_.indices.push_back(uint32_t(placed[size_t(v)]));
     }
-    return uint32_t(placed[size_t(v)]);
+    drawn_.normals.push_back(normal);
+    drawnElement_.push_back(shows);
   };
   auto drawElement = [&](int e) {
-    for (auto v : m.fv_range(TriMesh::FaceHandle(e))) drawn_.indices.push_back(position(v.idx()));
-    drawn_.normals.push_back(mesh.normal(e));
-    drawnElement_.push_back(e);
+    std::array<int, 3> corners;
+    int k = 0;
+    for (auto v : m.fv_range(TriMesh::FaceHandle(e))) corners[size_t(k++)] = v.idx();
+    draw(corners, mesh.normal(e), e);
   };
   std::vector<glm::dvec2> at(m.n_vertices());  // the current region's vertices in its frame
   std::vector<uint32_t> slotOf(elementCount_, kNone);
@@ -139,90 +169,86 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
       drawElement(group[0]);
       continue;
     }
+    // The region's frame (u × v along its normal) and its vertices in it.
     Region region;
     region.normal = mesh.normal(group[0]);
     const PlaneFrame frame = planeFrame(mesh.corners(group[0])[0], region.normal);
     region.origin = frame.origin, region.u = frame.u, region.v = frame.v;
     if (glm::dot(glm::cross(region.u, region.v), region.normal) < 0) region.v = -region.v;
-    auto local = [&](const glm::dvec3& p) {
-      return glm::dvec2(glm::dot(p - region.origin, region.u), glm::dot(p - region.origin, region.v));
-    };
     for (int e : group)
-      for (auto v : m.fv_range(TriMesh::FaceHandle(e))) at[size_t(v.idx())] = local(PatchMesh::toGlm(m.point(v)));
-    // The outline's constrained triangulation, if it closes and takes fewer triangles.
-    Polygon2 outline;
-    for (const auto& loop : splitAtPinches(mesh.boundaryLoops(group, [&](int e) { return groupOf[size_t(e)] == int(g); }))) {
-      const std::vector<int> corners = withoutCollinear(loop, at);
-      if (corners.size() < 3) continue;
-      auto& ring = outline.rings.emplace_back();
-      for (int v : corners) ring.push_back(at[size_t(v)]);
-      outline.ids.push_back(corners);
-    }
-    Triangulation2 triangles;
-    try {
-      if (!outline.rings.empty()) triangles = triangulatePolygon(outline, "flat region");
-    } catch (const std::exception&) {
-      triangles = Triangulation2();  // crossing rings (rounding): draw the elements
-    }
-    bool usable = !triangles.triangles.empty() && triangles.triangles.size() < group.size();
-    for (int id : triangles.ids) usable = usable && id >= 0;
-    if (!usable) {
+      for (auto v : m.fv_range(TriMesh::FaceHandle(e)))
+        at[size_t(v.idx())] = glm::dvec2(glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.u),
+                                         glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.v));
+    // Its outline's triangles, or its elements.
+    const Triangulation2 outline = outlineTriangulation(mesh, group, int(g), groupOf, at);
+    if (outline.triangles.empty()) {
       for (int e : group) drawElement(e);
       continue;
     }
     const int32_t code = -1 - int32_t(regions_.size());
-    for (const auto& t : triangles.triangles) {
-      for (int k : t) drawn_.indices.push_back(position(triangles.ids[size_t(k)]));
-      drawn_.normals.push_back(region.normal);
-      drawnElement_.push_back(code);
-    }
-    // Its elements' edges, and the grid over them: about one cell per element.
-    region.firstSlot = uint32_t(slots_.size());
-    region.slotCount = uint32_t(group.size());
-    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (size_t k = 0; k < group.size(); ++k) slotOf[size_t(group[k])] = region.firstSlot + uint32_t(k);
-    for (int e : group) {
-      Slot slot{};
-      slot.element = uint32_t(e);
-      std::array<glm::dvec2, 3> c;
-      int k = 0;
-      for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {  // edge k: corner k to corner k + 1
-        c[size_t(k)] = at[size_t(m.from_vertex_handle(h).idx())];
-        const auto other = m.opposite_face_handle(h);
-        slot.across[size_t(k++)] = other.is_valid() && groupOf[size_t(other.idx())] == int(g) ? slotOf[size_t(other.idx())] : kNone;
-      }
-      for (size_t k = 0; k < 3; ++k) setEdge(slot.a, slot.b, slot.c, k, edgeLine(c[k], c[(k + 1) % 3]));
-      setEdge(slot.a, slot.b, slot.c, 3, glm::dvec3(0, 0, std::numeric_limits<float>::max()));
-      slots_.push_back(slot);
-      for (const glm::dvec2& p : c) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    }
-    const glm::dvec2 extent = glm::max(hi - lo, glm::dvec2(1e-300));
-    const double cell = std::sqrt(extent.x * extent.y / double(group.size()));
-    region.lo = lo;
-    region.inverseCell = 1 / std::max({cell, extent.x / double(group.size()), extent.y / double(group.size())});
-    region.columns = std::max(1, int(std::ceil(extent.x * region.inverseCell)));
-    region.rows = std::max(1, int(std::ceil(extent.y * region.inverseCell)));
-    region.firstCell = uint32_t(cellStart_.size());
-    const size_t cells = size_t(region.columns) * size_t(region.rows);
-    std::vector<std::vector<uint32_t>> lists(cells);
-    for (uint32_t s = region.firstSlot; s < region.firstSlot + region.slotCount; ++s) {
-      glm::dvec2 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
-      for (auto v : m.fv_range(TriMesh::FaceHandle(int(slots_[s].element))))
-        a = glm::min(a, at[size_t(v.idx())]), b = glm::max(b, at[size_t(v.idx())]);
-      const int c0 = std::clamp(int((a.x - lo.x) * region.inverseCell), 0, region.columns - 1);
-      const int c1 = std::clamp(int((b.x - lo.x) * region.inverseCell), 0, region.columns - 1);
-      const int r0 = std::clamp(int((a.y - lo.y) * region.inverseCell), 0, region.rows - 1);
-      const int r1 = std::clamp(int((b.y - lo.y) * region.inverseCell), 0, region.rows - 1);
-      for (int r = r0; r <= r1; ++r)
-        for (int c = c0; c <= c1; ++c) lists[size_t(r) * size_t(region.columns) + size_t(c)].push_back(s);
-    }
-    for (const auto& list : lists) {
-      cellStart_.push_back(uint32_t(cellSlots_.size()));
-      cellSlots_.insert(cellSlots_.end(), list.begin(), list.end());
-    }
+    for (const auto& t : outline.triangles)
+      draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.normal, code);
+    // Its elements' slots, and the grid over them.
+    addSlots(mesh, group, int(g), groupOf, at, slotOf, region);
+    addGrid(mesh, at, region);
     regions_.push_back(region);
   }
   cellStart_.push_back(uint32_t(cellSlots_.size()));
+}
+
+void FlatRegions::addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,
+                           const std::vector<glm::dvec2>& at, std::vector<uint32_t>& slotOf, Region& region) {
+  const TriMesh& m = mesh.mesh;
+  region.firstSlot = uint32_t(slots_.size());
+  region.slotCount = uint32_t(group.size());
+  for (size_t k = 0; k < group.size(); ++k) slotOf[size_t(group[k])] = region.firstSlot + uint32_t(k);
+  for (int e : group) {
+    Slot slot{};
+    slot.element = uint32_t(e);
+    std::array<glm::dvec2, 3> c;
+    size_t k = 0;
+    for (auto h : m.fh_range(TriMesh::FaceHandle(e))) {  // edge k: corner k to corner k + 1
+      c[k] = at[size_t(m.from_vertex_handle(h).idx())];
+      const auto other = m.opposite_face_handle(h);
+      slot.across[k++] = other.is_valid() && groupOf[size_t(other.idx())] == g ? slotOf[size_t(other.idx())] : kNone;
+    }
+    for (k = 0; k < 3; ++k) setEdge(slot.a, slot.b, slot.c, k, edgeLine(c[k], c[(k + 1) % 3]));
+    setEdge(slot.a, slot.b, slot.c, 3, glm::dvec3(0, 0, std::numeric_limits<float>::max()));
+    slots_.push_back(slot);
+  }
+}
+
+void FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region) {
+  // Each slot's box in the frame; the grid over them has about one cell per element.
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<glm::dvec2, glm::dvec2>> boxes;
+  glm::dvec2 lo(inf), hi(-inf);
+  for (uint32_t s = region.firstSlot; s < region.firstSlot + region.slotCount; ++s) {
+    glm::dvec2 a(inf), b(-inf);
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(int(slots_[s].element))))
+      a = glm::min(a, at[size_t(v.idx())]), b = glm::max(b, at[size_t(v.idx())]);
+    boxes.emplace_back(a, b);
+    lo = glm::min(lo, a), hi = glm::max(hi, b);
+  }
+  const double n = double(region.slotCount);
+  const glm::dvec2 extent = glm::max(hi - lo, glm::dvec2(1e-300));
+  region.lo = lo;
+  region.inverseCell = 1 / std::max({std::sqrt(extent.x * extent.y / n), extent.x / n, extent.y / n});
+  region.columns = std::max(1, int(std::ceil(extent.x * region.inverseCell)));
+  region.rows = std::max(1, int(std::ceil(extent.y * region.inverseCell)));
+  region.firstCell = uint32_t(cellStart_.size());
+  auto cell = [&](double x, double lo, int count) { return std::clamp(int((x - lo) * region.inverseCell), 0, count - 1); };
+  std::vector<std::vector<uint32_t>> lists(size_t(region.columns) * size_t(region.rows));
+  for (uint32_t k = 0; k < region.slotCount; ++k) {
+    const auto& [a, b] = boxes[k];
+    for (int r = cell(a.y, lo.y, region.rows); r <= cell(b.y, lo.y, region.rows); ++r)
+      for (int c = cell(a.x, lo.x, region.columns); c <= cell(b.x, lo.x, region.columns); ++c)
+        lists[size_t(r) * size_t(region.columns) + size_t(c)].push_back(region.firstSlot + k);
+  }
+  for (const auto& list : lists) {
+    cellStart_.push_back(uint32_t(cellSlots_.size()));
+    cellSlots_.insert(cellSlots_.end(), list.begin(), list.end());
+  }
 }
 
 FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d,

@@ -98,6 +98,13 @@ class FlatRegions {
     return bits;
 #endif
   }
+  /// Adds the slots of a region's elements (`group`, flat group g; their vertices' frame
+  /// coordinates in `at`), each with its neighbours across its edges (slotOf: per element).
+  void addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,
+                const std::vector<glm::dvec2>& at, std::vector<uint32_t>& slotOf, Region& region);
+  /// Adds the grid over a region's slots: about one cell per element, each listing the slots
+  /// whose boxes overlap it.
+  void addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region);
   /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
   /// and across which edge that is (`edge`).
   float inside(uint32_t s, float x, float y, int& edge) const {
