@@ -4,7 +4,9 @@
 #include <exception>
 #include <limits>
 #include <unordered_map>
+#include <unordered_set>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "mesh/geometry.h"
@@ -23,6 +25,11 @@ constexpr double kFlatDistance = 1e-9;
 /// A boundary vertex is dropped from the outline when it lies this close (relative to its
 /// neighbours' distances) to the line between them: a point that split a straight edge.
 constexpr double kCollinear = 1e-9;
+/// A region's outline triangles must cover its elements' area to this (relative).
+constexpr double kSameArea = 1e-9;
+/// A region's grid may list at most this many slots per element in all (a fan of long
+/// slivers would list each in most cells): beyond, the region is drawn as its elements.
+constexpr size_t kMaxGridEntriesPerElement = 32;
 
 /// The elements grouped into flat regions (connected across edges, one plane).
 std::vector<std::vector<int>> flatGroups(const PatchMesh& mesh, double sceneSize, std::vector<int>& groupOf) {
@@ -81,11 +88,18 @@ std::vector<std::vector<int>> splitAtPinches(std::vector<std::vector<int>> loops
   return out;
 }
 
-/// The loop without its vertices that lie on the straight line between their neighbours.
-std::vector<int> withoutCollinear(const std::vector<int>& loop, const std::vector<glm::dvec2>& at) {
+/// The loop without its vertices that lie on the straight line between their neighbours, but
+/// those `kept(v)` holds (a pinch, which another loop passes too; a corner of a neighbour drawn
+/// as its elements, which would leave a T-junction in the raster).
+template <class Keep>
+std::vector<int> withoutCollinear(const std::vector<int>& loop, const std::vector<glm::dvec2>& at, const Keep& keep) {
   std::vector<int> kept;
   const size_t n = loop.size();
   for (size_t k = 0; k < n; ++k) {
+    if (keep(loop[k])) {
+      kept.push_back(loop[k]);
+      continue;
+    }
     const glm::dvec2 a = at[size_t(kept.empty() ? loop[(k + n - 1) % n] : kept.back())];
     const glm::dvec2 b = at[size_t(loop[k])], c = at[size_t(loop[(k + 1) % n])];
     const glm::dvec2 ab = b - a, bc = c - b;
@@ -112,14 +126,34 @@ void setEdge(std::array<float, 4>& a, std::array<float, 4>& b, std::array<float,
 }
 
 
+/// Positions as hash keys (-0 folded into 0 by the caller).
+struct PositionHash {
+  size_t operator()(const glm::dvec3& p) const {
+    const std::hash<double> h;
+    return h(p.x) * 73856093u ^ h(p.y) * 19349663u ^ h(p.z) * 83492791u;
+  }
+};
+
+/// Twice the area of triangle (a, b, c) in the plane, signed (counter-clockwise positive).
+double area2(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
 /// The constrained triangulation of a region's outline (its vertices' frame coordinates in
-/// `at`), if it closes, triangulates and takes fewer triangles than the region has elements;
-/// else empty (the region is drawn as its elements).
+/// `at`), if it closes, triangulates, covers the region's area and takes fewer triangles than
+/// the region has elements; else empty (the region is drawn as its elements). `pinned(v)`:
+/// vertex v must stay a corner.
+template <class Pinned>
 Triangulation2 outlineTriangulation(const PatchMesh& mesh, const std::vector<int>& group, int g,
-                                    const std::vector<int>& groupOf, const std::vector<glm::dvec2>& at) {
+                                    const std::vector<int>& groupOf, const std::vector<glm::dvec2>& at,
+                                    const Pinned& pinned) {
+  const auto loops = splitAtPinches(mesh.boundaryLoops(group, [&](int e) { return groupOf[size_t(e)] == g; }));
+  std::unordered_map<int, int> passes;  // per vertex, how many times the loops pass it
+  for (const auto& loop : loops)
+    for (int v : loop) ++passes[v];
   Polygon2 outline;
-  for (const auto& loop : splitAtPinches(mesh.boundaryLoops(group, [&](int e) { return groupOf[size_t(e)] == g; }))) {
-    const std::vector<int> corners = withoutCollinear(loop, at);
+  for (const auto& loop : loops) {
+    const std::vector<int> corners = withoutCollinear(loop, at, [&](int v) { return passes[v] > 1 || pinned(v); });
     if (corners.size() < 3) continue;
     auto& ring = outline.rings.emplace_back();
     for (int v : corners) ring.push_back(at[size_t(v)]);
@@ -131,9 +165,21 @@ Triangulation2 outlineTriangulation(const PatchMesh& mesh, const std::vector<int
   } catch (const std::exception&) {
     return {};  // rings that cross by rounding
   }
-  bool usable = !triangles.triangles.empty() && triangles.triangles.size() < group.size();
-  for (int id : triangles.ids) usable = usable && id >= 0;
-  return usable ? triangles : Triangulation2();
+  if (triangles.triangles.empty() || triangles.triangles.size() >= group.size()) return {};
+  for (int id : triangles.ids)
+    if (id < 0) return {};
+  // The outline's triangles cover exactly the elements (an inside-out nesting would not).
+  double covered = 0, elements = 0;
+  for (const auto& t : triangles.triangles)
+    covered += std::abs(area2(triangles.points[size_t(t[0])], triangles.points[size_t(t[1])], triangles.points[size_t(t[2])]));
+  for (int e : group) {
+    std::array<glm::dvec2, 3> c;
+    size_t k = 0;
+    for (auto v : mesh.mesh.fv_range(TriMesh::FaceHandle(e))) c[k++] = at[size_t(v.idx())];
+    elements += std::abs(area2(c[0], c[1], c[2]));
+  }
+  if (std::abs(covered - elements) > kSameArea * elements) return {};
+  return triangles;
 }
 
 }  // namespace
@@ -161,6 +207,14 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
     for (auto v : m.fv_range(TriMesh::FaceHandle(e))) corners[size_t(k++)] = v.idx();
     draw(corners, mesh.normal(e), e);
   };
+  // The corners of one-element regions, drawn as they are: an outline keeps them.
+  std::unordered_set<glm::dvec3, PositionHash> singleCorners;
+  for (const auto& group : groups)
+    if (group.size() == 1)
+      for (const glm::dvec3& c : mesh.corners(group[0])) singleCorners.insert(c + glm::dvec3(0.0));
+  auto pinned = [&](int v) {
+    return !singleCorners.empty() && singleCorners.count(PatchMesh::toGlm(m.point(TriMesh::VertexHandle(v))) + glm::dvec3(0.0));
+  };
   std::vector<glm::dvec2> at(m.n_vertices());  // the current region's vertices in its frame
   std::vector<uint32_t> slotOf(elementCount_, kNone);
   for (size_t g = 0; g < groups.size(); ++g) {
@@ -179,18 +233,21 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
       for (auto v : m.fv_range(TriMesh::FaceHandle(e)))
         at[size_t(v.idx())] = glm::dvec2(glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.u),
                                          glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.v));
-    // Its outline's triangles, or its elements.
-    const Triangulation2 outline = outlineTriangulation(mesh, group, int(g), groupOf, at);
-    if (outline.triangles.empty()) {
+    // Its outline's triangles, its elements' slots and the grid over them; or its elements.
+    const Triangulation2 outline = outlineTriangulation(mesh, group, int(g), groupOf, at, pinned);
+    bool byOutline = !outline.triangles.empty();
+    if (byOutline) {
+      addSlots(mesh, group, int(g), groupOf, at, slotOf, region);
+      byOutline = addGrid(mesh, at, region);
+      if (!byOutline) slots_.resize(region.firstSlot);
+    }
+    if (!byOutline) {
       for (int e : group) drawElement(e);
       continue;
     }
     const int32_t code = -1 - int32_t(regions_.size());
     for (const auto& t : outline.triangles)
       draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.normal, code);
-    // Its elements' slots, and the grid over them.
-    addSlots(mesh, group, int(g), groupOf, at, slotOf, region);
-    addGrid(mesh, at, region);
     regions_.push_back(region);
   }
   cellStart_.push_back(uint32_t(cellSlots_.size()));
@@ -218,7 +275,7 @@ void FlatRegions::addSlots(const PatchMesh& mesh, const std::vector<int>& group,
   }
 }
 
-void FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region) {
+bool FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region) {
   // Each slot's box in the frame; the grid over them has about one cell per element.
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<std::pair<glm::dvec2, glm::dvec2>> boxes;
@@ -236,8 +293,14 @@ void FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& 
   region.inverseCell = 1 / std::max({std::sqrt(extent.x * extent.y / n), extent.x / n, extent.y / n});
   region.columns = std::max(1, int(std::ceil(extent.x * region.inverseCell)));
   region.rows = std::max(1, int(std::ceil(extent.y * region.inverseCell)));
+  region.hi = hi;
   region.firstCell = uint32_t(cellStart_.size());
   auto cell = [&](double x, double lo, int count) { return std::clamp(int((x - lo) * region.inverseCell), 0, count - 1); };
+  size_t entries = 0;
+  for (const auto& [a, b] : boxes)
+    entries += size_t(cell(b.y, lo.y, region.rows) - cell(a.y, lo.y, region.rows) + 1) *
+               size_t(cell(b.x, lo.x, region.columns) - cell(a.x, lo.x, region.columns) + 1);
+  if (entries > kMaxGridEntriesPerElement * boxes.size()) return false;
   std::vector<std::vector<uint32_t>> lists(size_t(region.columns) * size_t(region.rows));
   for (uint32_t k = 0; k < region.slotCount; ++k) {
     const auto& [a, b] = boxes[k];
@@ -249,6 +312,7 @@ void FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& 
     cellStart_.push_back(uint32_t(cellSlots_.size()));
     cellSlots_.insert(cellSlots_.end(), list.begin(), list.end());
   }
+  return true;
 }
 
 FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d,
@@ -262,7 +326,9 @@ FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, 
 
 uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
   const Region& r = regions_[size_t(-1 - shows)];
-  const float x = float(p.x), y = float(p.y);
+  // A grazing ray may meet the plane far off the region: no farther than its extent beyond it.
+  const glm::dvec2 margin = r.hi - r.lo, q = glm::clamp(p, r.lo - margin, r.hi + margin);
+  const float x = float(q.x), y = float(q.y);
   if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
     for (int step = 0; step <= kWalk && hint != kNone; ++step) {
       const uint32_t beyond = outside(hint, x, y);
@@ -270,8 +336,8 @@ uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint)
       hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
     }
   int edge = 0;
-  const int column = std::clamp(int(std::clamp((p.x - r.lo.x) * r.inverseCell, -1.0, double(r.columns))), 0, r.columns - 1);
-  const int row = std::clamp(int(std::clamp((p.y - r.lo.y) * r.inverseCell, -1.0, double(r.rows))), 0, r.rows - 1);
+  const int column = std::clamp(int((q.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
+  const int row = std::clamp(int((q.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
   const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);
   uint32_t best = r.firstSlot;
   float bestInside = -std::numeric_limits<float>::infinity();

@@ -64,7 +64,7 @@ class FlatRegions {
   /// a grid of the elements over their bounding box.
   struct Region {
     glm::dvec3 origin, u, v, normal;
-    glm::dvec2 lo{0.0};
+    glm::dvec2 lo{0.0}, hi{0.0};  ///< its elements' bounding box in its frame
     double inverseCell = 0;
     int columns = 1, rows = 1;
     uint32_t firstCell = 0;  ///< cells_[firstCell + row·columns + column]
@@ -103,8 +103,9 @@ class FlatRegions {
   void addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,
                 const std::vector<glm::dvec2>& at, std::vector<uint32_t>& slotOf, Region& region);
   /// Adds the grid over a region's slots: about one cell per element, each listing the slots
-  /// whose boxes overlap it.
-  void addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region);
+  /// whose boxes overlap it. False (nothing added) if that would list more than
+  /// kMaxGridEntriesPerElement slots per element.
+  bool addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region);
   /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
   /// and across which edge that is (`edge`).
   float inside(uint32_t s, float x, float y, int& edge) const {

@@ -139,17 +139,17 @@ int clampNegative(std::vector<glm::dvec3>& B) {
 std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit) {
   const double seconds = estimate.seconds(workers), oneCore = estimate.seconds(1);
   char text[320];
-  if (oneCore > kMaxGatherSeconds)
+  if (timeLeft > 0 && timeLeft <= kNoTimeLeft)
+    std::snprintf(text, sizeof text,
+                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
+                  "and the ambient term are shown",
+                  timeLimit);
+  else if (oneCore > kMaxGatherSeconds)
     std::snprintf(text, sizeof text,
                   "final gather skipped: its hemicubes would take about %.2g s on one core, more than the %.0f s "
                   "it may (a quarter of an hour on two); the progressive solution is shown at the vertices (coarser "
                   "elements gather: raise solver.max_element_edge)",
                   oneCore, kMaxGatherSeconds);
-  else if (timeLeft > 0 && timeLeft <= kNoTimeLeft)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
-                  "and the ambient term are shown",
-                  timeLimit);
   else if (timeLeft > 0 && seconds > kGatherShareOfTimeLeft * timeLeft)
     std::snprintf(text, sizeof text,
                   "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "

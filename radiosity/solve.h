@@ -73,9 +73,9 @@ SolverOptions solverOptions(const Settings& settings, size_t patches);
 /// The seconds of settings.timeLimit the scene has left (0: no limit; else at least 1e-9,
 /// once spent).
 double timeLeft(const MeshedScene& scene);
-/// Why the final gather is left out, as the warning says it, or empty: it would take more
-/// than kMaxGatherSeconds on one core, or meshing spent the time limit (`timeLimit`), or it
-/// would take more than half of what the limit leaves (`timeLeft`; 0: no limit) on `workers`.
+/// Why the final gather is left out, as the warning says it, or empty: meshing spent the time
+/// limit (`timeLimit`), or it would take more than kMaxGatherSeconds on one core, or more than
+/// half of what the limit leaves (`timeLeft`; 0: no limit) on `workers`.
 std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& scene, int workers = 0);

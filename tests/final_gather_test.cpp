@@ -182,6 +182,8 @@ TEST(FinalGatherTest, LeftOutWithAWarningBeyondItsBudget) {
   const std::string late = gatherLeftOut(estimate, 2, 2 * seconds - 1, 1e5);
   EXPECT_NE(late.find("the time limit leaves after meshing"), std::string::npos) << late;
   EXPECT_NE(gatherLeftOut(estimate, 2, 1e-9, 300).find("and no shot"), std::string::npos);
+  estimate.located *= 4;  // over the budget too: still no shot is what happens
+  EXPECT_NE(gatherLeftOut(estimate, 2, 1e-9, 300).find("and no shot"), std::string::npos);
 }
 
 /// A 95 000-element box whose hemicubes would have drawn every element (4.7e9 vertex-element
@@ -199,8 +201,8 @@ TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
 }
 
 /// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather
-/// sorts every triangle it draws to its faces from every gathering vertex, and resolves at
-/// most every pixel of every hemicube to its element.
+/// sorts every triangle it draws to its faces from every gathering vertex, and resolves more
+/// than a top face's worth of pixels in each (the box is closed but for its front).
 TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
   ASSERT_TRUE(s->meshed.gather);
@@ -210,7 +212,6 @@ TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
   EXPECT_LT(regions.drawn().elementCount() * 20, size_t(base.elementCount()));
   EXPECT_EQ(s->meshed.gatherEstimate.drawn, points * double(regions.drawn().elementCount()));
   const int R = kDefaultGatherResolution;
-  EXPECT_LE(s->meshed.gatherEstimate.located, points * 3 * R * R);
   EXPECT_GT(s->meshed.gatherEstimate.located, points * R * R);
 }
 
