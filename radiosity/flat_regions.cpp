@@ -223,16 +223,11 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
       drawElement(group[0]);
       continue;
     }
-    // The region's frame (u × v along its normal) and its vertices in it.
+    // The region's frame (planeFrame's u × v is its normal) and its vertices in it.
     Region region;
-    region.normal = mesh.normal(group[0]);
-    const PlaneFrame frame = planeFrame(mesh.corners(group[0])[0], region.normal);
-    region.origin = frame.origin, region.u = frame.u, region.v = frame.v;
-    if (glm::dot(glm::cross(region.u, region.v), region.normal) < 0) region.v = -region.v;
+    region.frame = planeFrame(mesh.corners(group[0])[0], mesh.normal(group[0]));
     for (int e : group)
-      for (auto v : m.fv_range(TriMesh::FaceHandle(e)))
-        at[size_t(v.idx())] = glm::dvec2(glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.u),
-                                         glm::dot(PatchMesh::toGlm(m.point(v)) - region.origin, region.v));
+      for (auto v : m.fv_range(TriMesh::FaceHandle(e))) at[size_t(v.idx())] = region.frame.project(PatchMesh::toGlm(m.point(v)));
     // Its outline's triangles, its elements' slots and the grid over them; or its elements.
     const Triangulation2 outline = outlineTriangulation(mesh, group, int(g), groupOf, at, pinned);
     bool byOutline = !outline.triangles.empty();
@@ -247,7 +242,7 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
     }
     const int32_t code = -1 - int32_t(regions_.size());
     for (const auto& t : outline.triangles)
-      draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.normal, code);
+      draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.frame.normal, code);
     regions_.push_back(region);
   }
   cellStart_.push_back(uint32_t(cellSlots_.size()));
@@ -318,10 +313,11 @@ bool FlatRegions::addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& 
 FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d,
                                           const glm::dvec3& step) const {
   const Region& r = regions_[size_t(-1 - shows)];
-  const glm::dvec3 w = eye - r.origin;
-  return {glm::dot(w, r.u),        glm::dot(w, r.v),        glm::dot(w, r.normal),
-          glm::dot(d, r.normal),    glm::dot(d, r.u),        glm::dot(d, r.v),
-          glm::dot(step, r.normal), glm::dot(step, r.u),     glm::dot(step, r.v)};
+  const PlaneFrame& f = r.frame;
+  const glm::dvec3 w = eye - f.origin;
+  return {glm::dot(w, f.u),        glm::dot(w, f.v),        glm::dot(w, f.normal),
+          glm::dot(d, f.normal),    glm::dot(d, f.u),        glm::dot(d, f.v),
+          glm::dot(step, f.normal), glm::dot(step, f.u),     glm::dot(step, f.v)};
 }
 
 uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
@@ -335,14 +331,13 @@ uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint)
       if (!beyond) return slots_[hint].element;
       hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
     }
-  int edge = 0;
   const int column = std::clamp(int((q.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
   const int row = std::clamp(int((q.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
   const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);
   uint32_t best = r.firstSlot;
   float bestInside = -std::numeric_limits<float>::infinity();
   auto consider = [&](uint32_t s) {
-    const float d = inside(s, x, y, edge);
+    const float d = inside(s, x, y);
     if (d > bestInside) bestInside = d, best = s;
     return d >= 0;
   };

@@ -20,6 +20,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "mesh/geometry.h"
 #include "radiosity/hemicube.h"
 
 namespace rad {
@@ -32,7 +33,8 @@ class FlatRegions {
   FlatRegions(const PatchMesh& mesh, double sceneSize);
 
   /// The triangles drawn: regions' outline triangles, and the elements of regions left as
-  /// they are (one element, or an outline that would not triangulate into fewer triangles).
+  /// they are (one element; an outline that would not triangulate into fewer triangles, or not
+  /// cover the elements' area; a grid that would grow too large).
   const HemicubeGeometry& drawn() const { return drawn_; }
   size_t elementCount() const { return elementCount_; }
   size_t regionCount() const { return regions_.size(); }
@@ -63,11 +65,11 @@ class FlatRegions {
   /// A region drawn by its outline: its plane frame, its elements' corners in that frame and
   /// a grid of the elements over their bounding box.
   struct Region {
-    glm::dvec3 origin, u, v, normal;
+    PlaneFrame frame;  ///< u × v is the normal, towards the lit side
     glm::dvec2 lo{0.0}, hi{0.0};  ///< its elements' bounding box in its frame
     double inverseCell = 0;
     int columns = 1, rows = 1;
-    uint32_t firstCell = 0;  ///< cells_[firstCell + row·columns + column]
+    uint32_t firstCell = 0;  ///< its cell (row, column) is cellStart_[firstCell + row·columns + column]
     uint32_t firstSlot = 0, slotCount = 0;  ///< its elements' slots
   };
   /// An element of a region: its edges' lines a·x + b·y + c in the region's frame (unit
@@ -80,8 +82,8 @@ class FlatRegions {
     uint32_t element;
   };
   static constexpr uint32_t kNone = ~0u;
-  /// Steps from slot to slot across the edge p lies farthest beyond, from a neighbouring
-  /// pixel's element, before the grid is searched instead.
+  /// Steps from slot to slot across an edge the point lies beyond, from a neighbouring pixel's
+  /// element, before the grid is searched instead.
   static constexpr int kWalk = 4;
 
   /// The edges of slot s's triangle that point (x, y) lies beyond (bit k: edge k).
@@ -106,16 +108,12 @@ class FlatRegions {
   /// whose boxes overlap it. False (nothing added) if that would list more than
   /// kMaxGridEntriesPerElement slots per element.
   bool addGrid(const PatchMesh& mesh, const std::vector<glm::dvec2>& at, Region& region);
-  /// How far inside slot s's triangle point p lies (its smallest edge value; < 0 outside),
-  /// and across which edge that is (`edge`).
-  float inside(uint32_t s, float x, float y, int& edge) const {
+  /// How far inside slot s's triangle point (x, y) lies: its smallest edge value (< 0
+  /// outside; computed as outside() computes it).
+  float inside(uint32_t s, float x, float y) const {
     const Slot& slot = slots_[s];
     float least = slot.a[0] * x + slot.b[0] * y + slot.c[0];
-    edge = 0;
-    for (int k = 1; k < 3; ++k) {
-      const float d = slot.a[size_t(k)] * x + slot.b[size_t(k)] * y + slot.c[size_t(k)];
-      if (d < least) least = d, edge = k;
-    }
+    for (size_t k = 1; k < 3; ++k) least = std::min(least, slot.a[k] * x + slot.b[k] * y + slot.c[k]);
     return least;
   }
 

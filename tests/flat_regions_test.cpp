@@ -12,7 +12,6 @@
 #include "mesh/scene.h"
 #include "radiosity/final_gather.h"
 #include "radiosity/flat_regions.h"
-#include "radiosity/gather_points.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
