@@ -110,12 +110,11 @@ DirectLight::Probe midpointProbe(const PatchMesh& mesh, int e, TriMesh::VertexHa
   p.rho = mesh.reflectance(e);
   p.inwards = mesh.centroid(e) - p.point;
   p.size = 0.5 * (m.point(a) - m.point(b)).norm();
-  // Where both ends see the same samples, so does the midpoint (a thin occluder seen
-  // from neither is the exception this accepts): its light needs no ray.
-  if (vertices[size_t(a.idx())].visible == vertices[size_t(b.idx())].visible)
-    p.visible = &vertices[size_t(a.idx())].visible;
-  else
-    p.clearSight = false;
+  // A sample both ends see, or neither, the midpoint sees as they do (a thin occluder seen
+  // from neither end is the exception this accepts): rays go only to the samples whose
+  // visibility changes along the edge, none where the ends see the same.
+  p.visible = &vertices[size_t(a.idx())].visible;
+  if (vertices[size_t(b.idx())].visible != *p.visible) p.alsoVisible = &vertices[size_t(b.idx())].visible;
   return p;
 }
 

@@ -47,6 +47,9 @@ constexpr double kMinRayOffset = 1e-6;
 /// coordinates normalised to the scene): the light is not taken to be clear. Below
 /// kMinRayOffset, so that the surface a point lies on stays apart.
 constexpr double kClearSightMargin = 3e-7;
+/// A point between two ends that see different samples tests every this many-th of the
+/// samples they agree on (and every sample, should one of those disagree).
+constexpr size_t kAgreementCheck = 8;
 
 /// The emitting patches, and per surface side (surface·2 + side) their area.
 std::vector<int> emittingPatches(const PatchMesh& mesh, std::vector<double>& sideArea) {
@@ -255,17 +258,48 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
 void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
                                  std::vector<char>& visible, long& raysCast) const {
   visible.resize(samples.size());
-  if (probe.visible) {
-    for (size_t k = 0; k < samples.size(); ++k)
-      visible[k] = (*probe.visible)[size_t(samples[k] / 64)] >> (samples[k] % 64) & 1;
+  auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j / 64)] >> (j % 64) & 1); };
+  thread_local std::vector<glm::dvec3> to;
+  thread_local std::vector<size_t> at;
+  thread_local std::vector<char> blocked;
+  // Casts the rays to samples[at[i]] for i from `first` on; how many found other than
+  // `visible` held.
+  auto cast = [&](size_t first) {
+    to.clear();
+    for (size_t i = first; i < at.size(); ++i) to.push_back(points_[size_t(samples[at[i]])]);
+    rays_impl_->blocked(origin, to, blocked);
+    raysCast += long(to.size());
+    size_t changed = 0;
+    for (size_t i = first; i < at.size(); ++i) {
+      const char seen = !blocked[i - first];
+      changed += seen != visible[at[i]];
+      visible[at[i]] = seen;
+    }
+    return changed;
+  };
+  at.clear();
+  if (!probe.visible) {
+    for (size_t k = 0; k < samples.size(); ++k) at.push_back(k);
+    cast(0);
     return;
   }
-  thread_local std::vector<glm::dvec3> to;
-  to.clear();
-  for (int j : samples) to.push_back(points_[size_t(j)]);
-  rays_impl_->blocked(origin, to, visible);
-  raysCast += long(samples.size());
-  for (char& v : visible) v = !v;
+  for (size_t k = 0; k < samples.size(); ++k) visible[k] = bit(*probe.visible, samples[k]);
+  if (!probe.alsoVisible) return;
+  // Between two ends that see different samples: rays to every kAgreementCheck-th of the
+  // samples they agree on, and to those they do not. A sample both ends see may still be
+  // hidden from a point between them (past the corner of its shadow); should a checked one
+  // be, every sample is tested.
+  size_t agreed = 0;
+  std::vector<size_t> differing, unchecked;
+  for (size_t k = 0; k < samples.size(); ++k)
+    if (bit(*probe.alsoVisible, samples[k]) != visible[k])
+      differing.push_back(k);
+    else
+      (agreed++ % kAgreementCheck == 0 ? at : unchecked).push_back(k);
+  const bool contradicted = !at.empty() && cast(0) > 0;
+  at = std::move(differing);
+  if (contradicted) at.insert(at.end(), unchecked.begin(), unchecked.end());
+  if (!at.empty()) cast(0);
 }
 
 namespace {

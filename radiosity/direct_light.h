@@ -95,8 +95,13 @@ class DirectLight {
     /// If set, the samples visible from the point are taken to be these, and no ray is cast
     /// (between two vertices that see the same samples).
     const std::vector<uint64_t>* visible = nullptr;
-    /// Whether to look for a clear sight of each light before casting rays (ClearSight): not
-    /// between two vertices that see different samples, in a penumbra, where it seldom pays.
+    /// If set too, the samples seen from the two ends of an edge the point lies between:
+    /// a sample both ends see, or neither, is taken as they have it, and rays are cast to the
+    /// others only (the shadow's edge crosses the light between them).
+    const std::vector<uint64_t>* alsoVisible = nullptr;
+    /// Whether to look for a clear sight of each light before casting rays (ClearSight); a
+    /// probe given `visible` never looks (its rays, if any, go where its ends differ, into a
+    /// penumbra, where it seldom pays).
     bool clearSight = true;
   };
   /// The direct light at each probe, on all workers.
