@@ -258,9 +258,9 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
 void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
                                  std::vector<char>& visible, long& raysCast) const {
   visible.resize(samples.size());
-  auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j / 64)] >> (j % 64) & 1); };
+  auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j) >> 6] >> (size_t(j) & 63) & 1); };
   thread_local std::vector<glm::dvec3> to;
-  thread_local std::vector<size_t> at;
+  thread_local std::vector<size_t> at, differing, unchecked;
   thread_local std::vector<char> blocked;
   // Casts the rays to samples[at[i]] for i from `first` on; how many found other than
   // `visible` held.
@@ -290,14 +290,14 @@ void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, c
   // hidden from a point between them (past the corner of its shadow); should a checked one
   // be, every sample is tested.
   size_t agreed = 0;
-  std::vector<size_t> differing, unchecked;
+  differing.clear(), unchecked.clear();
   for (size_t k = 0; k < samples.size(); ++k)
     if (bit(*probe.alsoVisible, samples[k]) != visible[k])
       differing.push_back(k);
     else
       (agreed++ % kAgreementCheck == 0 ? at : unchecked).push_back(k);
   const bool contradicted = !at.empty() && cast(0) > 0;
-  at = std::move(differing);
+  at.swap(differing);
   if (contradicted) at.insert(at.end(), unchecked.begin(), unchecked.end());
   if (!at.empty()) cast(0);
 }
@@ -336,10 +336,12 @@ struct DirectLight::SeenLight {
     stride = 1;
     share = -1;
   }
+  /// How many samples are visible (tested, or taken from a tested one).
+  size_t seen() const { return size_t(std::count(visible.begin(), visible.end(), char(1))); }
   /// Whether some tested samples are visible and some not (the point is in its penumbra).
   bool partial() const {
-    const auto first = visible.begin(), last = visible.end();
-    return std::find(first, last, 1) != last && std::find(first, last, 0) != last;
+    const size_t n = seen();
+    return n > 0 && n < visible.size();
   }
 };
 
@@ -386,9 +388,9 @@ void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t 
 
 double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& light) const {
   if (light.share >= 0) return light.share;
-  const auto first = light.visible.begin(), last = light.visible.end();
-  if (std::find(first, last, 0) == last) return light.share = 1;  // the weighted sum over all, exactly
-  if (std::find(first, last, 1) == last) return light.share = 0;
+  const size_t seen = light.seen();
+  if (seen == light.visible.size()) return light.share = 1;  // the weighted sum over all, exactly
+  if (seen == 0) return light.share = 0;
   if (light.weight.empty()) {
     const LightPolygon& lamp = lights_[t];
     for (int j : light.above) {
@@ -400,7 +402,7 @@ double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t
   double sum = 0, all = 0;
   for (size_t k = 0; k < light.above.size(); ++k) {
     all += light.weight[k];
-    sum += light.visible[k] ? light.weight[k] : 0.0;
+    sum += light.weight[k] * double(light.visible[k]);
   }
   return light.share = all > 0 ? sum / all : 0.0;
 }
@@ -408,6 +410,12 @@ double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t
 void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, SeenLight& light,
                        long& raysCast) const {
   if (light.stride && light.stride <= stride) return;
+  if (!light.stride && stride == 1) {  // every sample, none tested yet: straight in
+    samplesVisible(probe, p, light.above, light.visible, raysCast);
+    light.stride = 1;
+    light.share = -1;
+    return;
+  }
   thread_local std::vector<int> samples;
   thread_local std::vector<size_t> at;
   thread_local std::vector<char> visible;
@@ -464,7 +472,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast, long& seenW
     SeenLight& light = seen[t];
     if (light.above.empty()) continue;
     for (size_t k = 0; k < light.above.size(); ++k)
-      if (light.visible[k]) out.visible[size_t(light.above[k] / 64)] |= uint64_t(1) << (light.above[k] % 64);
+      out.visible[size_t(light.above[k]) >> 6] |= uint64_t(light.visible[k]) << (size_t(light.above[k]) & 63);
     const glm::dvec3 full = probe.rho * lights_[t].emission * light.F;
     out.radiosity += full * seenShare(p, n, t, light);
     out.weight[t] = float(luminance(full) / double(light.above.size()));  // the mean sample's share
