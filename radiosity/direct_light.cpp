@@ -363,18 +363,24 @@ constexpr double kPlanarSlack = 4 * kPlanarity;
 
 }  // namespace
 
-void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const {
-  out.above.clear(), out.weight.clear(), out.visible.clear();
-  out.stride = 0, out.share = -1;
+bool DirectLight::whollyAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const {
   const LightPolygon& light = lights_[t];
-  out.F = unoccludedFactor(p, n, t);
-  if (!(out.F > 0)) return;
   bool whole = true;
   for (const glm::dvec3& c : light.hull) {
     const glm::dvec3 d = c - p;
     const double margin = kWhollyAbove * glm::length(d) + kPlanarSlack * light.size;
     whole = whole && glm::dot(n, d) > margin && -glm::dot(light.normal, d) > margin;
   }
+  return whole;
+}
+
+void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const {
+  out.above.clear(), out.weight.clear(), out.visible.clear();
+  out.stride = 0, out.share = -1;
+  const LightPolygon& light = lights_[t];
+  out.F = unoccludedFactor(p, n, t);
+  if (!(out.F > 0)) return;
+  const bool whole = whollyAbove(p, n, t);
   for (int j = light.first; j < light.first + light.count; ++j) {
     if (!whole) {
       const glm::dvec3 d = onLight_[size_t(j)] - p;
@@ -431,12 +437,61 @@ void DirectLight::test(const Probe& probe, const glm::dvec3& p, size_t stride, S
       if (k % stride) light.visible[k] = light.visible[k - k % stride];
 }
 
+namespace {
+
+/// How many of the bits [first, first + count) are set.
+size_t bitsSet(const std::vector<uint64_t>& bits, int first, int count) {
+  size_t set = 0;
+  for (int j = first; j < first + count;) {
+    const int word = j / 64, from = j % 64, to = std::min(64, from + (first + count - j));
+    uint64_t w = bits[size_t(word)] >> from;
+    if (to - from < 64) w &= (uint64_t(1) << (to - from)) - 1;
+    set += size_t(__builtin_popcountll(w));
+    j += to - from;
+  }
+  return set;
+}
+
+}  // namespace
+
+bool DirectLight::fromEnds(const Probe& probe, const glm::dvec3& p, VertexLight& out) const {
+  struct Seen {
+    double F;
+    bool all;
+  };
+  thread_local std::vector<Seen> seen;
+  seen.assign(lights_.size(), {0.0, false});
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    const LightPolygon& light = lights_[t];
+    const double F = unoccludedFactor(p, probe.normal, t);
+    if (!(F > 0)) continue;
+    const size_t set = bitsSet(*probe.visible, light.first, light.count);
+    if (set != 0 && set != size_t(light.count)) return false;  // a penumbra: sample by sample
+    if (!whollyAbove(p, probe.normal, t)) return false;        // some samples below the horizon
+    seen[t] = {F, set != 0};
+  }
+  for (size_t t = 0; t < lights_.size(); ++t) {
+    const LightPolygon& light = lights_[t];
+    if (!(seen[t].F > 0)) continue;
+    const glm::dvec3 full = probe.rho * light.emission * seen[t].F;
+    if (seen[t].all) {
+      out.radiosity += full;
+      for (int j = light.first; j < light.first + light.count; ++j) out.visible[size_t(j) >> 6] |= uint64_t(1) << (j & 63);
+    }
+    out.weight[t] = float(luminance(full) / double(light.count));
+  }
+  return true;
+}
+
 VertexLight DirectLight::compute(const Probe& probe, long& raysCast, long& seenWhole) const {
   VertexLight out;
   out.visible.assign(size_t((samples_ + 63) / 64), 0);
   out.weight.assign(lights_.size(), 0.0f);
   if (probe.rho == glm::dvec3(0.0)) return out;  // black: nothing to show
   const glm::dvec3 p = offSurface(probe, sceneSize_), &n = probe.normal;
+  // Between two ends that see the same samples, each light seen whole or not at all: its
+  // light at once, as the samples would give it.
+  if (probe.visible && !probe.alsoVisible && fromEnds(probe, p, out)) return out;
   // Each light's samples above the horizon and its unoccluded light first: the lights share
   // the point's rays by what each brings (a probe given its visibility casts none).
   thread_local std::vector<SeenLight> seen;  // reused from probe to probe: no allocation

@@ -118,6 +118,11 @@ class DirectLight {
   struct SeenLight;
   /// Light t's exact unoccluded factor from p with normal n (0 behind it).
   double unoccludedFactor(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
+  /// Whether light t lies wholly above the horizon of p with normal n, p wholly in front of it.
+  bool whollyAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t) const;
+  /// The light at a probe given what it sees (and no second end), into `out`, when it sees
+  /// each light above its horizon whole or not at all; false (out untouched) otherwise.
+  bool fromEnds(const Probe& probe, const glm::dvec3& p, VertexLight& out) const;
   /// Light t seen from p with normal n into `out`: its samples above the horizon, none tested
   /// yet.
   void samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t t, SeenLight& out) const;

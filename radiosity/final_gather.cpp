@@ -28,66 +28,96 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// One vertex's form factors to the elements it sees.
-struct Row {
-  std::vector<int> elements;
-  std::vector<float> factors;
-};
-
-/// The form factors of every vertex (rows), or of none once they outgrow the memory budget.
+/// The rows the vertex system takes: per vertex of the refined mesh, the row it gathers
+/// through (null: it does not gather), or none once they outgrew the memory budget.
 struct Rows {
-  std::vector<Row> rows;
+  std::vector<const GatherRow*> of;
   bool kept = true;
 };
 
 /// Σⱼ F_vj·y_j over one row.
-glm::dvec3 gatherRow(const Row& row, const Field& y) {
+glm::dvec3 gatherRow(const GatherRow& row, const Field& y) {
   glm::dvec3 sum(0.0);
   for (size_t k = 0; k < row.elements.size(); ++k) sum += double(row.factors[k]) * y[size_t(row.elements[k])];
   return sum;
 }
 
-/// The hemicube's factors from vertex v (off its surface and inwards, as the rays start).
+/// The hemicube's factors from vertex v of `mesh` (off its surface and inwards, as the rays
+/// start).
 void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, Hemicube& cube, FormFactors& out) {
   const DirectLight::Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(v));
   cube.compute(offSurface(probe, sceneSize), probe.normal, hemicubeRotation(seed, kGatherStream + uint64_t(v), 0), out);
 }
 
-/// Renders every gathering vertex's hemicube; each row is used once at once (`once`, the
-/// single gather over y, at the gathering vertices) and kept while the budget allows.
-Rows gatherRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<bool>& gathering, const Field& y,
-                Field& once, const GatherOptions& options, GatherStats& stats) {
+/// Renders the hemicubes of `mesh`'s vertices `which` over `drawn`'s elements into `out`
+/// (rows per vertex of mesh), each gathered over y at once if given, and let go once the
+/// rows outgrow the budget.
+void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<int>& which,
+                const GatherOptions& options, const Field* y, const std::atomic<bool>* cancel, GatherRows& out) {
+  const auto clock = Clock::now();
   const FlatRegions regions(drawn, sceneSize);
   const int workers = workerCount(options.workers);
   std::vector<std::unique_ptr<Hemicube>> cubes;
   std::vector<FormFactors> scratch(static_cast<size_t>(workers));
   for (int w = 0; w < workers; ++w) cubes.push_back(std::make_unique<Hemicube>(regions, options.resolution, sceneSize));
-  Rows out;
-  out.rows.resize(gathering.size());
-  once.assign(gathering.size(), glm::dvec3(0.0));
-  std::atomic<long> factors{0};
+  out.rows.resize(mesh.mesh.n_vertices());
+  if (y) out.once.assign(mesh.mesh.n_vertices(), glm::dvec3(0.0));
+  std::atomic<long> factors{out.factors};
   std::atomic<bool> late{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
-  parallelFor(gathering.size(), workers, [&](size_t v, int worker) {
-    if (!gathering[v] || late) return;
-    if (options.deadline && Clock::now() > *options.deadline) {
+  parallelFor(which.size(), workers, [&](size_t k, int worker) {
+    if (late) return;
+    if ((options.deadline && Clock::now() > *options.deadline) || (cancel && *cancel)) {
       late = true;
       return;
     }
+    const int v = which[k];
     FormFactors& f = scratch[size_t(worker)];
-    factorsAt(mesh, sceneSize, options.seed, int(v), *cubes[size_t(worker)], f);
-    Row& row = out.rows[v];
+    factorsAt(mesh, sceneSize, options.seed, v, *cubes[size_t(worker)], f);
+    GatherRow& row = out.rows[size_t(v)];
     row.elements = f.elements;
     row.factors.assign(f.factors.begin(), f.factors.end());
-    once[v] = gatherRow(row, y);
-    if ((factors += long(f.elements.size())) > budget) row = Row();
+    if (y) out.once[size_t(v)] = gatherRow(row, *y);
+    if ((factors += long(f.elements.size())) > budget) row = GatherRow();
   }, 16);
-  stats.factors = factors;
-  stats.timedOut = late;
-  out.kept = factors <= budget;
+  out.factors = factors;
+  out.timedOut = out.timedOut || late;
+  out.kept = out.kept && factors <= budget;
   if (!out.kept) out.rows.clear();
+  out.seconds += secondsSince(clock);
+}
+
+}  // namespace
+
+GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const GatherOptions& options, const Field* y,
+                            const std::atomic<bool>* cancel) {
+  const Field rho = vertexReflectance(drawn);
+  std::vector<int> which;
+  for (size_t v = 0; v < rho.size(); ++v)
+    if (rho[v] != glm::dvec3(0.0)) which.push_back(int(v));
+  GatherRows out;
+  renderRows(drawn, drawn, sceneSize, which, options, y, cancel, out);
   return out;
 }
+
+GatherAhead::GatherAhead(std::shared_ptr<const PatchMesh> drawn, double sceneSize, const GatherOptions& options)
+    : drawn_(std::move(drawn)) {
+  rendering_ = std::async(std::launch::async, [this, sceneSize, options] {
+    return renderGatherRows(*drawn_, sceneSize, options, nullptr, &cancel_);
+  });
+}
+
+GatherAhead::~GatherAhead() {
+  cancel_ = true;
+  if (rendering_.valid()) rendering_.wait();
+}
+
+const GatherRows& GatherAhead::rows() {
+  if (!rows_) rows_ = rendering_.get();
+  return *rows_;
+}
+
+namespace {
 
 /// The value of each element the hemicubes draw as a weighted sum of vertex values: the
 /// mean of its corners, or, drawing the mesh as built before refinement, the area-weighted
@@ -118,7 +148,7 @@ Interpolation interpolation(const PatchMesh& mesh, const PatchMesh* base) {
 Field gathered(const Rows& rows, const GatherPoints& points, const Field& y, int workers) {
   Field atPoints(points.at.size(), glm::dvec3(0.0));
   parallelFor(atPoints.size(), workers, [&](size_t v, int) {
-    if (points.at[v]) atPoints[v] = gatherRow(rows.rows[v], y);
+    if (rows.of[v]) atPoints[v] = gatherRow(*rows.of[v], y);
   }, 256);
   return points.spread(atPoints);
 }
@@ -281,7 +311,7 @@ GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, doub
 
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
-                                    const GatherOptions& options, GatherStats* statsOut) {
+                                    const GatherOptions& options, GatherStats* statsOut, const GatherRows* rendered) {
   GatherStats stats;
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
   const GatherPoints points = gatherPoints(mesh, base, rho);
@@ -289,16 +319,37 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   const PatchMesh& drawn = base ? *base : mesh;
   const int workers = workerCount(options.workers);
   const Interpolation W = interpolation(mesh, base);
-  Field once;
-  auto clock = Clock::now();
-  const Rows rows = gatherRows(mesh, drawn, sceneSize, points.at, sent(drawn, W.apply(start), !direct), once,
-                               options, stats);
-  stats.hemicubeSeconds = secondsSince(clock);
+  const Field y = sent(drawn, W.apply(start), !direct);
+  // The drawn mesh's rows: rendered already, or now (gathered over y as they come, in case
+  // they outgrow the memory budget); and the rows of gathering vertices that are not the
+  // drawn mesh's (a base corner refinement lost), rendered from their own probes.
+  GatherRows now;
+  if (!rendered || !rendered->kept) now = renderGatherRows(drawn, sceneSize, options, &y);
+  const GatherRows& ofDrawn = rendered && rendered->kept ? *rendered : now;
+  GatherRows own;
+  own.factors = ofDrawn.factors;  // counted against the same budget
+  std::vector<int> loners;
+  for (size_t v = 0; v < points.at.size(); ++v)
+    if (points.at[v] && points.drawn[v] < 0) loners.push_back(int(v));
+  if (!loners.empty()) renderRows(mesh, drawn, sceneSize, loners, options, &y, nullptr, own);
+  stats.factors = own.factors;
+  stats.timedOut = ofDrawn.timedOut || own.timedOut;
+  stats.hemicubeSeconds = ofDrawn.seconds + own.seconds;
   if (stats.timedOut) {
     if (statsOut) *statsOut = stats;
     return {};
   }
-  clock = Clock::now();
+  const auto clock = Clock::now();
+  Rows rows;
+  rows.kept = ofDrawn.kept && own.kept;
+  Field once(points.at.size(), glm::dvec3(0.0));
+  if (rows.kept) rows.of.assign(points.at.size(), nullptr);
+  for (size_t v = 0; v < points.at.size(); ++v) {
+    if (!points.at[v]) continue;
+    const int d = points.drawn[v];
+    if (rows.kept) rows.of[v] = d >= 0 ? &ofDrawn.rows[size_t(d)] : &own.rows[v];
+    once[v] = d >= 0 ? (ofDrawn.once.empty() ? gatherRow(*rows.of[v], y) : ofDrawn.once[size_t(d)]) : own.once[v];
+  }
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {
     const Field d = direct ? *direct : emittersGathered(drawn, rows, points, rho, workers);

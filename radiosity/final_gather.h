@@ -18,8 +18,11 @@
 // system is solved by BiCGSTAB from the progressive solution. Only the vertices of the mesh as
 // built before refinement render hemicubes; the others interpolate what those gather
 // (radiosity/gather_points.h), while their direct light is their own rays'.
+#include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <future>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -80,16 +83,67 @@ struct GatherStats {
   bool timedOut = false;  ///< the deadline came before every hemicube was rendered
 };
 
+/// One gathering vertex's form factors to the elements its hemicube sees.
+struct GatherRow {
+  std::vector<int> elements;
+  std::vector<float> factors;
+};
+
+/// The hemicubes of the mesh the gather draws (the mesh as built before refinement): they
+/// depend on that mesh alone, not on the light, so they can render while the rays are cast and
+/// the start is shot (GatherAhead).
+struct GatherRows {
+  std::vector<GatherRow> rows;   ///< per vertex of the drawn mesh (empty: black, or let go)
+  std::vector<glm::dvec3> once;  ///< per vertex, its row over `y` (renderGatherRows), if given
+  long factors = 0;              ///< non-zero factors over all rows
+  bool kept = true;              ///< false: the rows outgrew options.memoryBytes and were let go
+  bool timedOut = false;         ///< options.deadline came first (or the rendering was cancelled)
+  double seconds = 0;            ///< how long they took to render
+};
+
+/// Renders the hemicube of every vertex of `drawn` that is not black, from its probe (off its
+/// surface and inwards, as its rays start), over drawn's elements. With `y` (per element of
+/// drawn), each row is also gathered over it at once (GatherRows::once), so that rows over the
+/// memory budget can be let go as they come. Stops early once `cancel` is set.
+GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const GatherOptions& options,
+                            const std::vector<glm::dvec3>* y = nullptr, const std::atomic<bool>* cancel = nullptr);
+
+/// renderGatherRows on threads of its own, from construction on, while the caller goes on
+/// (meshScene casts the rays and refines meanwhile, and the start is shot): the gather then
+/// only iterates. The threads add to the caller's; the rows are what rendering them later
+/// gives, bit for bit.
+class GatherAhead {
+ public:
+  GatherAhead(std::shared_ptr<const PatchMesh> drawn, double sceneSize, const GatherOptions& options);
+  /// Stops rendering (what is left is not needed) and waits for the threads.
+  ~GatherAhead();
+  GatherAhead(const GatherAhead&) = delete;
+  GatherAhead& operator=(const GatherAhead&) = delete;
+
+  /// The rows, once rendered (waits for them; rethrows what rendering threw).
+  const GatherRows& rows();
+  /// The mesh they draw.
+  const PatchMesh& drawn() const { return *drawn_; }
+
+ private:
+  std::shared_ptr<const PatchMesh> drawn_;
+  std::atomic<bool> cancel_{false};
+  std::future<GatherRows> rendering_;
+  std::optional<GatherRows> rows_;
+};
+
 /// The radiosity shown at each vertex of `mesh`: its surface's emission plus x (above).
 /// `start`: the light each vertex reflects, as the progressive solution shows it (the
 /// iteration's start and, over memory, what the single gather gathers). `direct`: per vertex,
 /// the direct light by rays, or null.
 /// `base`: the mesh as built before refinement (or null): its vertices gather, and the
 /// hemicubes draw its elements, each valued as the area-weighted mean of its parts.
+/// `rendered`: the drawn mesh's rows if rendered already (GatherAhead), else null.
 /// Empty if options.deadline came before every hemicube was rendered (stats: timedOut).
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
-                                    const GatherOptions& options, GatherStats* stats = nullptr);
+                                    const GatherOptions& options, GatherStats* stats = nullptr,
+                                    const GatherRows* rendered = nullptr);
 
 /// What the gather would cost, from kGatherWorkProbes of its vertices spread over the mesh.
 /// Deterministic: the same mesh gives the same figures on any machine.

@@ -65,10 +65,12 @@ std::vector<std::pair<int, double>> interpolated(const PatchMesh& mesh, const Pa
   return out;
 }
 
-/// Makes vertex v gather for itself.
-void gatherAt(GatherPoints& g, int v) {
+/// Makes vertex v gather for itself, through the hemicube of the drawn mesh's vertex `drawn`
+/// (-1: its own).
+void gatherAt(GatherPoints& g, int v, int drawn) {
   g.at[size_t(v)] = true;
   g.from[size_t(v)] = {{v, 1.0}};
+  g.drawn[size_t(v)] = drawn;
 }
 
 }  // namespace
@@ -84,20 +86,21 @@ int GatherPoints::count() const { return int(std::count(at.begin(), at.end(), tr
 
 GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Field& rho) {
   const size_t n = mesh.mesh.n_vertices();
-  GatherPoints g{std::vector<bool>(n, false), std::vector<std::vector<std::pair<int, double>>>(n)};
+  GatherPoints g{std::vector<bool>(n, false), std::vector<std::vector<std::pair<int, double>>>(n),
+                 std::vector<int>(n, -1)};
   if (!base) {
     for (size_t v = 0; v < n; ++v)
-      if (rho[v] != glm::dvec3(0.0)) gatherAt(g, int(v));
+      if (rho[v] != glm::dvec3(0.0)) gatherAt(g, int(v), int(v));
     return g;
   }
   const BaseCorners at = baseCorners(mesh, *base);
-  for (int b : at)
-    if (b >= 0 && rho[size_t(b)] != glm::dvec3(0.0)) gatherAt(g, b);
+  for (size_t b = 0; b < at.size(); ++b)
+    if (at[b] >= 0 && rho[size_t(at[b])] != glm::dvec3(0.0)) gatherAt(g, at[b], int(b));
   for (auto f : mesh.mesh.faces())
     for (auto v : mesh.mesh.fv_range(f)) {
       if (!g.from[size_t(v.idx())].empty() || rho[size_t(v.idx())] == glm::dvec3(0.0)) continue;
       g.from[size_t(v.idx())] = interpolated(mesh, *base, at, f.idx(), v);
-      if (g.from[size_t(v.idx())].empty()) gatherAt(g, v.idx());  // its base element's corner is lost
+      if (g.from[size_t(v.idx())].empty()) gatherAt(g, v.idx(), -1);  // its base element's corner is lost
     }
   return g;
 }

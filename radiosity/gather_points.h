@@ -19,6 +19,10 @@ struct GatherPoints {
   /// Per vertex: the gathering vertices its gathered light is interpolated from, with their
   /// weights (a gathering vertex: itself, weight 1; a black one: none).
   std::vector<std::vector<std::pair<int, double>>> from;
+  /// Per gathering vertex: the vertex of the drawn mesh (the base, or the mesh itself) at its
+  /// place, whose hemicube it gathers through; -1 for the others (and for a gathering vertex
+  /// that is not one of the drawn mesh's: it renders its own).
+  std::vector<int> drawn;
 
   /// Values at every vertex from values at the gathering ones.
   std::vector<glm::dvec3> spread(const std::vector<glm::dvec3>& atPoints) const;

@@ -22,6 +22,17 @@ void passOn(const std::vector<std::string>& warnings, size_t from, const Meshing
   for (size_t k = from; k < warnings.size(); ++k) options.warn(warnings[k]);
 }
 
+/// The gather's options by the scene's settings, its deadline what the time limit sets.
+GatherOptions gatherOptions(const MeshedScene& s) {
+  GatherOptions options;
+  options.resolution = s.settings.gatherResolution;
+  options.seed = s.settings.seed;
+  if (s.settings.timeLimit > 0)
+    options.deadline = s.started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                       std::chrono::duration<double>(s.settings.timeLimit));
+  return options;
+}
+
 /// An emitter cut away entirely is an error before any ray is cast.
 void requireEmitter(const MeshedScene& s) {
   for (int e = 0; e < s.mesh.elementCount(); ++e)
@@ -65,27 +76,34 @@ AdaptiveOptions adaptiveOptions(const Settings& settings) {
 }
 
 /// Refines the mesh where the direct light changes visibly, keeping the mesh as it was
-/// (MeshedScene::base) when anything was refined.
-void refine(MeshedScene& s) {
-  auto base = std::make_unique<PatchMesh>(s.mesh);
+/// (`unrefined`, a copy: MeshedScene::base) when anything was refined.
+void refine(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined) {
   s.adaptive = refineAdaptively(s.mesh, *s.direct, adaptiveOptions(s.settings));
-  if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(base);
+  if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(unrefined);
 }
 
+void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing);
+
 /// The direct light at the vertices by rays and, with it, adaptive refinement; or, when the
-/// emitters are too many for rays, the mesh the hemicubes alone need.
-void lightVertices(MeshedScene& s) {
+/// emitters are too many for rays, the mesh the hemicubes alone need. The final gather is
+/// decided once the mesh it draws is known: before refinement, which it does not draw.
+void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-  if (!s.settings.vertexDirect && !s.settings.adaptive) return;
+  if (!s.settings.vertexDirect && !s.settings.adaptive) return decideGather(s, nullptr, options);
   s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
   if (!s.direct->enabled()) {
     s.direct.reset();
-    return meshWithoutRays(s);
+    meshWithoutRays(s);
+    return decideGather(s, nullptr, options);
   }
-  if (s.settings.adaptive)
-    refine(s);
-  else
+  if (s.settings.adaptive) {
+    auto unrefined = std::make_shared<const PatchMesh>(s.mesh);
+    decideGather(s, unrefined, options);
+    refine(s, std::move(unrefined));
+  } else {
+    decideGather(s, nullptr, options);
     s.direct->update(s.mesh);
+  }
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
@@ -96,20 +114,25 @@ constexpr double kGatherShareOfTimeLeft = 0.5;
 
 /// The final gather if the settings ask for it and it fits the budget (gatherLeftOut).
 /// Skipped, the progressive solve is the answer and shoots as it would without the gather.
-void decideGather(MeshedScene& s) {
+/// Gathered and iterated, its hemicubes over the mesh as it is now (before refinement, which
+/// they do not draw; `unrefined`: a copy of it, or null) start rendering at once if
+/// meshing.gatherAhead says a solve follows.
+void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing) {
   if (!s.settings.finalGather) return;
-  GatherOptions options;
-  options.resolution = s.settings.gatherResolution;
-  options.seed = s.settings.seed;
-  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.base.get(), s.scene.diagonal(), options);
+  const GatherOptions options = gatherOptions(s);
+  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, nullptr, s.scene.diagonal(), options);
   const std::string leftOut = gatherLeftOut(estimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
   s.gather = leftOut.empty();
   if (s.gather) {
+    if (!estimate.iterates(options)) return;
     // Iterated to its own solution, the gather needs only a start: no more than
     // kGatherStartMaxShots shots however many patches there are.
     const double patches = double(s.mesh.patches.size());
-    if (estimate.iterates(options) && s.settings.shotsPerPatch * patches > double(kGatherStartMaxShots))
+    if (s.settings.shotsPerPatch * patches > double(kGatherStartMaxShots))
       s.settings.shotsPerPatch = double(kGatherStartMaxShots) / patches;
+    if (!meshing.gatherAhead) return;
+    if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
+    s.gatherAhead = std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
     return;
   }
   if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
@@ -175,8 +198,7 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
   if (options.requireEmitter) requireEmitter(s);
   // A mesh built again has the same repairs first: only what follows is new.
   const size_t passed = s.mesh.warnings.size();
-  lightVertices(s);
-  decideGather(s);
+  lightVertices(s, options);
   passOn(s.mesh.warnings, passed, options);
   return s;
 }
@@ -235,15 +257,12 @@ void RadiositySolve::gatherAtVertices(Solution& b) const {
   std::vector<glm::dvec3> start = shownAtVertices(scene_, b);
   const std::vector<glm::dvec3> emission = vertexEmission(mesh);
   for (size_t v = 0; v < start.size(); ++v) start[v] = glm::max(start[v] - emission[v], glm::dvec3(0.0));
-  GatherOptions options;
-  options.resolution = scene_.settings.gatherResolution;
-  options.seed = scene_.settings.seed;
+  GatherOptions options = gatherOptions(scene_);
   options.workers = workers_;
-  if (scene_.settings.timeLimit > 0)
-    options.deadline = scene_.started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                            std::chrono::duration<double>(scene_.settings.timeLimit));
   const std::vector<glm::dvec3>* direct = b.direct ? &b.direct->vertex : nullptr;
-  std::vector<glm::dvec3> gathered = finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather);
+  const GatherRows* rendered = scene_.gatherAhead ? &scene_.gatherAhead->rows() : nullptr;
+  std::vector<glm::dvec3> gathered =
+      finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather, rendered);
   if (b.gather.timedOut) return;  // the progressive solution stays, with its ambient term
   b.gathered = std::move(gathered);
   b.B = elementMeans(mesh, *b.gathered);

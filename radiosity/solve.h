@@ -41,7 +41,7 @@ struct MeshedScene {
   /// scene's emitters are too many for rays (kMaxRayEmitterPatches).
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;            ///< what adaptive refinement did
-  std::unique_ptr<PatchMesh> base;   ///< the mesh before refinement (null if nothing was refined)
+  std::shared_ptr<const PatchMesh> base;  ///< the mesh before refinement (null if nothing was refined)
   /// Whether the solution is gathered at the vertices: settings.finalGather, unless
   /// gatherLeftOut says why not (in a warning).
   bool gather = false;
@@ -49,6 +49,9 @@ struct MeshedScene {
   /// would resolve to elements, the factors it would keep (estimateGather; zeros with the
   /// gather off).
   GatherEstimate gatherEstimate{};
+  /// The gather's hemicubes, rendering since the mesh they draw was known
+  /// (MeshingOptions::gatherAhead), or null: then the gather renders them itself.
+  std::shared_ptr<GatherAhead> gatherAhead{};
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
@@ -60,6 +63,10 @@ struct MeshingOptions {
   bool requireEmitter = false;
   /// Called with each of the mesher's warnings (repairs, approximations) once, as they arise.
   std::function<void(const std::string&)> warn;
+  /// A solve follows: the final gather's hemicubes start rendering as soon as the mesh they
+  /// draw is known, on threads of their own beside the rays and the shots (GatherAhead), when
+  /// the gather is on and its rows fit its memory. The result is the same, bit for bit.
+  bool gatherAhead = false;
 };
 
 /// Meshes the scene by its settings, deciding everything before any solving: the uniform mesh

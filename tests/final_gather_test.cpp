@@ -120,6 +120,29 @@ TEST(FinalGatherTest, CornellBoxOriginalFromItsMeshFileTrueErrorAtDefaults) {
   EXPECT_LE(trueError(*s, kDocs + "cornell_original_reference.csv"), kCornellOriginalRms);
 }
 
+/// The gather's hemicubes rendered beside the rays and the shots (GatherAhead, as `radiosity
+/// solve` does) give what the gather rendering them itself gives, bit for bit: they draw the
+/// mesh as built before refinement, from its own vertices.
+TEST(FinalGatherTest, HemicubesRenderedAheadGiveTheSameLight) {
+  auto solved = [](bool ahead) {
+    Scene scene = loadSceneToSolve(test::kScenes + "cornell_original.json");
+    const Settings settings = resolveSettings(scene, {});
+    auto meshed = std::make_unique<MeshedScene>(meshScene(std::move(scene), settings, {true, nullptr, ahead}));
+    EXPECT_EQ(bool(meshed->gatherAhead), ahead);
+    EXPECT_TRUE(meshed->base);  // refined: the hemicubes draw the mesh before
+    const Solution solution = solveRadiosity(*meshed);
+    return std::make_pair(*solution.gathered, solution.gather);
+  };
+  const auto [ahead, aheadStats] = solved(true);
+  const auto [inPlace, inPlaceStats] = solved(false);
+  EXPECT_EQ(aheadStats.factors, inPlaceStats.factors);
+  EXPECT_EQ(aheadStats.iterations, inPlaceStats.iterations);
+  ASSERT_EQ(ahead.size(), inPlace.size());
+  size_t same = 0;
+  for (size_t v = 0; v < ahead.size(); ++v) same += ahead[v] == inPlace[v];
+  EXPECT_EQ(same, ahead.size());
+}
+
 /// Where the gather renders: on the refined Cornell box, exactly the vertices of the mesh before
 /// refinement; every other vertex takes a convex combination of gathering vertices of its own
 /// surface, which reproduces a linear field exactly (barycentric weights in its base element).

@@ -20,12 +20,13 @@ struct Solved {
   const ProgressiveSolver& solver() const { return solve->solver(); }
 };
 
-/// Solves a scene file as `radiosity solve FILE` with these flags would.
+/// Solves a scene file as `radiosity solve FILE` with these flags would (the gather's
+/// hemicubes rendering beside the rays).
 inline std::unique_ptr<Solved> solveLikeCli(const std::string& path, const SolverBlock& flags = {}) {
   auto s = std::make_unique<Solved>();
   Scene scene = loadSceneToSolve(path);
   const Settings settings = resolveSettings(scene, flags);
-  s->meshed = meshScene(std::move(scene), settings, {true, nullptr});
+  s->meshed = meshScene(std::move(scene), settings, {true, nullptr, true});
   s->solve = std::make_unique<RadiositySolve>(s->meshed);
   while (s->solve->step()) {
   }

@@ -122,7 +122,9 @@ void addSolverFlags(CLI::App& app, SolverBlock& flags) {
 MeshedScene meshWithFlags(Scene scene, const SolverBlock& flags, bool requireEmitter) {
   printWarnings(scene.warnings);
   const Settings settings = resolveSettings(scene, flags);
-  return meshScene(std::move(scene), settings, {requireEmitter, [](const std::string& w) { printWarnings({withFlags(w)}); }});
+  // Only a solve needs light; its gather's hemicubes render beside the rays.
+  return meshScene(std::move(scene), settings,
+                   {requireEmitter, [](const std::string& w) { printWarnings({withFlags(w)}); }, requireEmitter});
 }
 
 MeshedScene loadAndMesh(const std::string& path, Scene (*load)(const std::string&), const SolverBlock& flags,
