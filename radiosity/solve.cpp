@@ -125,11 +125,12 @@ void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, co
   s.gather = leftOut.empty();
   if (s.gather) {
     if (!estimate.iterates(options)) return;
-    // Iterated to its own solution, the gather needs only a start: no more than
-    // kGatherStartMaxShots shots however many patches there are.
+    // Iterated to its own solution, the gather needs only a start: a hundredth of a shot per
+    // patch, no more than kGatherStartMaxShots shots however many patches there are.
     const double patches = double(s.mesh.patches.size());
-    if (s.settings.shotsPerPatch * patches > double(kGatherStartMaxShots))
-      s.settings.shotsPerPatch = double(kGatherStartMaxShots) / patches;
+    if (s.settings.shotsPerPatch > 0)
+      s.settings.shotsPerPatch =
+          std::min({s.settings.shotsPerPatch, kIteratedStartShotsPerPatch, double(kGatherStartMaxShots) / patches});
     if (!meshing.gatherAhead) return;
     if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
     s.gatherAhead = std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);

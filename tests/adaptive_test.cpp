@@ -62,10 +62,10 @@ TEST(AdaptiveTest, LedgerBalancesAfterRefinement) {
   EXPECT_GT(s->meshed.adaptive.elementsAfter, 2 * s->meshed.adaptive.elementsBefore);
   EXPECT_GT(s->meshed.adaptive.rounds, 1);
   EXPECT_LE(s->solver().ledger().residual(), kLedger);
-  // The final gather's progressive start: a tenth of a shot per patch (the gather converges
-  // from it).
+  // The iterated final gather's progressive start: a hundredth of a shot per patch (the
+  // gather converges from it).
   EXPECT_EQ(s->solver().stopReason(), ProgressiveSolver::Stop::MaxShots);
-  EXPECT_EQ(s->solver().shots(), long(std::ceil(kGatherStartShotsPerPatch * double(mesh.patches.size()))));
+  EXPECT_EQ(s->solver().shots(), long(std::ceil(kIteratedStartShotsPerPatch * double(mesh.patches.size()))));
   for (size_t sf = 0; sf < mesh.surfaces.size(); ++sf) {
     double area = 0;
     for (int e = 0; e < mesh.elementCount(); ++e)

@@ -240,16 +240,17 @@ TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
 
 /// With rows that fit its memory, the gather is iterated to its own solution from any start:
 /// the start shoots at most kGatherStartMaxShots times however many patches there are.
-TEST(FinalGatherTest, IteratedGatherStartsFromAFewHundredShots) {
+TEST(FinalGatherTest, IteratedGatherStartsFromAHundredShotsAtMost) {
   Scene scene = loadSceneToSolve(test::kData + "four_lamps.json");
   SolverBlock flags;
-  flags.maxPatchEdge = 0.05;  // a patch per element: thousands of patches
+  flags.maxElementEdge = 0.06;
+  flags.maxPatchEdge = 0.03;  // a patch per element: over ten thousand patches
   const Settings settings = resolveSettings(scene, flags);
   const MeshedScene meshed = meshScene(std::move(scene), settings);
   ASSERT_TRUE(meshed.gather);
   ASSERT_TRUE(meshed.gatherEstimate.iterates(GatherOptions{}));
   const double patches = double(meshed.mesh.patches.size());
-  EXPECT_GT(kGatherStartShotsPerPatch * patches, double(kGatherStartMaxShots));
+  EXPECT_GT(kIteratedStartShotsPerPatch * patches, double(kGatherStartMaxShots));
   EXPECT_NEAR(meshed.settings.shotsPerPatch * patches, double(kGatherStartMaxShots), 1e-6);
 }
 
