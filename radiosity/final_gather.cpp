@@ -348,8 +348,13 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
     if (!points.at[v]) continue;
     const int d = points.drawn[v];
     if (rows.kept) rows.of[v] = d >= 0 ? &ofDrawn.rows[size_t(d)] : &own.rows[v];
-    once[v] = d >= 0 ? (ofDrawn.once.empty() ? gatherRow(*rows.of[v], y) : ofDrawn.once[size_t(d)]) : own.once[v];
+    if (d < 0 || !ofDrawn.once.empty()) once[v] = d >= 0 ? ofDrawn.once[size_t(d)] : own.once[v];
   }
+  // Rows rendered ahead have not met y yet.
+  if (rows.kept && ofDrawn.once.empty())
+    parallelFor(once.size(), workers, [&](size_t v, int) {
+      if (rows.of[v] && points.drawn[v] >= 0) once[v] = gatherRow(*rows.of[v], y);
+    }, 256);
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {
     const Field d = direct ? *direct : emittersGathered(drawn, rows, points, rho, workers);

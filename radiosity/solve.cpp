@@ -90,20 +90,21 @@ void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, co
 void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
   if (!s.settings.vertexDirect && !s.settings.adaptive) return decideGather(s, nullptr, options);
-  s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
-  if (!s.direct->enabled()) {
-    s.direct.reset();
+  if (const int emitting = emittingPatches(s.mesh); emitting == 0 || emitting > kMaxRayEmitterPatches) {
+    // No rays (as DirectLight::enabled says).
     meshWithoutRays(s);
     return decideGather(s, nullptr, options);
   }
-  if (s.settings.adaptive) {
-    auto unrefined = std::make_shared<const PatchMesh>(s.mesh);
-    decideGather(s, unrefined, options);
+  // The gather first: its hemicubes render while the rays' scene is built and they are cast.
+  std::shared_ptr<const PatchMesh> unrefined;
+  if (s.settings.adaptive) unrefined = std::make_shared<const PatchMesh>(s.mesh);
+  decideGather(s, unrefined, options);
+  s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
+  RAD_CHECK(s.direct->enabled());
+  if (s.settings.adaptive)
     refine(s, std::move(unrefined));
-  } else {
-    decideGather(s, nullptr, options);
+  else
     s.direct->update(s.mesh);
-  }
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
