@@ -63,10 +63,10 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
   out.rows.resize(mesh.mesh.n_vertices());
   if (y) out.once.assign(mesh.mesh.n_vertices(), glm::dvec3(0.0));
   std::atomic<long> factors{out.factors};
-  std::atomic<bool> late{false};
+  std::atomic<bool> late{false}, over{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
   parallelFor(which.size(), workers, [&](size_t k, int worker) {
-    if (late) return;
+    if (late || over) return;
     if ((options.deadline && Clock::now() > *options.deadline) || (cancel && *cancel)) {
       late = true;
       return;
@@ -78,11 +78,13 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
     row.elements = f.elements;
     row.factors.assign(f.factors.begin(), f.factors.end());
     if (y) out.once[size_t(v)] = gatherRow(row, *y);
-    if ((factors += long(f.elements.size())) > budget) row = GatherRow();
+    if ((factors += long(f.elements.size())) <= budget) return;
+    row = GatherRow();
+    if (!y) over = true;  // without y, rows let go serve nothing: the gather renders them again
   }, 16);
   out.factors = factors;
   out.timedOut = out.timedOut || late;
-  out.kept = out.kept && factors <= budget;
+  out.kept = out.kept && factors <= budget && !over;
   if (!out.kept) out.rows.clear();
   out.seconds += secondsSince(clock);
 }
@@ -113,7 +115,14 @@ GatherAhead::~GatherAhead() {
 }
 
 const GatherRows& GatherAhead::rows() {
-  if (!rows_) rows_ = rendering_.get();
+  if (!rows_ && !failed_) {
+    try {
+      rows_ = rendering_.get();
+    } catch (...) {
+      failed_ = std::current_exception();
+    }
+  }
+  if (failed_) std::rethrow_exception(failed_);
   return *rows_;
 }
 
@@ -283,15 +292,14 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
   return out;
 }
 
-GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
-                              const GatherOptions& options) {
-  const GatherPoints points = gatherPoints(mesh, base, vertexReflectance(mesh));
+GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const GatherOptions& options) {
+  const GatherPoints points = gatherPoints(mesh, nullptr, vertexReflectance(mesh));
   std::vector<int> gathering;
   for (size_t v = 0; v < points.at.size(); ++v)
     if (points.at[v]) gathering.push_back(int(v));
   GatherEstimate out;
   if (gathering.empty()) return out;
-  const FlatRegions regions(base ? *base : mesh, sceneSize);
+  const FlatRegions regions(mesh, sceneSize);
   Hemicube cube(regions, options.resolution, sceneSize);
   FormFactors f;
   const size_t probes = std::min(gathering.size(), size_t(kGatherWorkProbes));
@@ -335,6 +343,7 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   stats.factors = own.factors;
   stats.timedOut = ofDrawn.timedOut || own.timedOut;
   stats.hemicubeSeconds = ofDrawn.seconds + own.seconds;
+  stats.renderedAhead = rendered && rendered->kept;
   if (stats.timedOut) {
     if (statsOut) *statsOut = stats;
     return {};
@@ -350,10 +359,11 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
     if (rows.kept) rows.of[v] = d >= 0 ? &ofDrawn.rows[size_t(d)] : &own.rows[v];
     if (d < 0 || !ofDrawn.once.empty()) once[v] = d >= 0 ? ofDrawn.once[size_t(d)] : own.once[v];
   }
-  // Rows rendered ahead have not met y yet.
-  if (rows.kept && ofDrawn.once.empty())
+  // Rows rendered ahead (kept, or they would have been rendered now) have not met y yet;
+  // gathered over it even if the loners' rows went over the budget.
+  if (ofDrawn.once.empty())
     parallelFor(once.size(), workers, [&](size_t v, int) {
-      if (rows.of[v] && points.drawn[v] >= 0) once[v] = gatherRow(*rows.of[v], y);
+      if (points.at[v] && points.drawn[v] >= 0) once[v] = gatherRow(ofDrawn.rows[size_t(points.drawn[v])], y);
     }, 256);
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {

@@ -21,6 +21,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <exception>
 #include <future>
 #include <memory>
 #include <optional>
@@ -79,7 +80,10 @@ struct GatherStats {
   bool iterated = false; ///< the vertex system solved (false: gathered once, over memory)
   int iterations = 0;    ///< BiCGSTAB iterations
   double residual = 0;   ///< relative residual at the end (largest channel)
+  /// The hemicubes' own time (rendered ahead: from the mesh on, beside the rays and the
+  /// shots) and the iteration's.
   double hemicubeSeconds = 0, solveSeconds = 0;
+  bool renderedAhead = false;  ///< the hemicubes rendered beside the rays and shots (GatherAhead)
   bool timedOut = false;  ///< the deadline came before every hemicube was rendered
 };
 
@@ -101,10 +105,12 @@ struct GatherRows {
   double seconds = 0;            ///< how long they took to render
 };
 
-/// Renders the hemicube of every vertex of `drawn` that is not black, from its probe (off its
-/// surface and inwards, as its rays start), over drawn's elements. With `y` (per element of
-/// drawn), each row is also gathered over it at once (GatherRows::once), so that rows over the
-/// memory budget can be let go as they come. Stops early once `cancel` is set.
+/// Renders the hemicube of every vertex of `drawn` that is not black, from its probe on drawn
+/// (off its surface and inwards, towards drawn's elements round it), over drawn's elements.
+/// With `y` (per element of drawn), each row is also gathered over it at once
+/// (GatherRows::once), so that rows over the memory budget can be let go as they come; without
+/// it, rendering stops once they outgrow the budget (kept false: they serve nothing). Stops
+/// early once `cancel` is set.
 GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const GatherOptions& options,
                             const std::vector<glm::dvec3>* y = nullptr, const std::atomic<bool>* cancel = nullptr);
 
@@ -120,7 +126,8 @@ class GatherAhead {
   GatherAhead(const GatherAhead&) = delete;
   GatherAhead& operator=(const GatherAhead&) = delete;
 
-  /// The rows, once rendered (waits for them; rethrows what rendering threw).
+  /// The rows, once rendered (waits for them; rethrows what rendering threw). One caller at
+  /// a time (the solve's thread).
   const GatherRows& rows();
   /// The mesh they draw.
   const PatchMesh& drawn() const { return *drawn_; }
@@ -130,6 +137,7 @@ class GatherAhead {
   std::atomic<bool> cancel_{false};
   std::future<GatherRows> rendering_;
   std::optional<GatherRows> rows_;
+  std::exception_ptr failed_;
 };
 
 /// The radiosity shown at each vertex of `mesh`: its surface's emission plus x (above).
@@ -171,8 +179,7 @@ struct GatherEstimate {
     return factors * double(sizeof(int) + sizeof(float)) <= double(options.memoryBytes);
   }
 };
-GatherEstimate estimateGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
-                              const GatherOptions& options);
+GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const GatherOptions& options);
 
 /// The emission and reflectance of each vertex's surface (vertices belong to one side of one
 /// surface); zero for an isolated vertex.

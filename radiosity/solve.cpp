@@ -84,6 +84,13 @@ void refine(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined) {
 
 void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing);
 
+/// The gather left out (`why`, in a warning): the progressive solve shoots as it would
+/// without it.
+void skipGather(MeshedScene& s, const std::string& why) {
+  if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
+  s.mesh.warnings.push_back(why);
+}
+
 /// The direct light at the vertices by rays and, with it, adaptive refinement; or, when the
 /// emitters are too many for rays, the mesh the hemicubes alone need. The final gather is
 /// decided once the mesh it draws is known: before refinement, which it does not draw.
@@ -121,24 +128,35 @@ constexpr double kGatherShareOfTimeLeft = 0.5;
 void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing) {
   if (!s.settings.finalGather) return;
   const GatherOptions options = gatherOptions(s);
-  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, nullptr, s.scene.diagonal(), options);
+  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.scene.diagonal(), options);
   const std::string leftOut = gatherLeftOut(estimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
   s.gather = leftOut.empty();
-  if (s.gather) {
-    if (!estimate.iterates(options)) return;
-    // Iterated to its own solution, the gather needs only a start: a hundredth of a shot per
-    // patch, no more than kGatherStartMaxShots shots however many patches there are.
-    const double patches = double(s.mesh.patches.size());
-    if (s.settings.shotsPerPatch > 0)
-      s.settings.shotsPerPatch =
-          std::min({s.settings.shotsPerPatch, kIteratedStartShotsPerPatch, double(kGatherStartMaxShots) / patches});
-    if (!meshing.gatherAhead) return;
-    if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
-    s.gatherAhead = std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
-    return;
+  if (!s.gather) return skipGather(s, leftOut);
+  if (!estimate.iterates(options)) return;
+  // Iterated to its own solution, the gather needs only a start: a hundredth of a shot per
+  // patch, no more than kGatherStartMaxShots shots however many patches there are. Under a
+  // time limit the start may be what is shown (the gather given up at its deadline): it keeps
+  // its tenth of a shot per patch then.
+  const double patches = double(s.mesh.patches.size());
+  if (s.settings.shotsPerPatch > 0) {
+    const double perPatch = s.settings.timeLimit > 0 ? s.settings.shotsPerPatch
+                                                     : std::min(s.settings.shotsPerPatch, kIteratedStartShotsPerPatch);
+    s.settings.shotsPerPatch = std::min(perPatch, double(kGatherStartMaxShots) / patches);
   }
-  if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
-  s.mesh.warnings.push_back(leftOut);
+  if (!meshing.gatherAhead) return;
+  if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
+  s.gatherAhead = std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
+}
+
+/// Under a time limit, the gather decided before the rays is decided again with the time they
+/// left (its hemicubes, if rendering, are stopped).
+void recheckGather(MeshedScene& s) {
+  if (!s.gather || !(s.settings.timeLimit > 0)) return;
+  const std::string leftOut = gatherLeftOut(s.gatherEstimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
+  if (leftOut.empty()) return;
+  s.gather = false;
+  s.gatherAhead.reset();
+  skipGather(s, leftOut);
 }
 
 /// The solver options of the scene's settings, the time limit what meshing left of it.
@@ -201,6 +219,7 @@ MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOption
   // A mesh built again has the same repairs first: only what follows is new.
   const size_t passed = s.mesh.warnings.size();
   lightVertices(s, options);
+  recheckGather(s);
   passOn(s.mesh.warnings, passed, options);
   return s;
 }

@@ -292,6 +292,29 @@ TEST(FinalGatherTest, GivesUpAtItsDeadline) {
   EXPECT_TRUE(stats.timedOut);
 }
 
+/// Rows rendered ahead that outgrow the memory budget stop rendering (they are let go: without
+/// the start they cannot be gathered as they come), and the gather renders them again, gathered
+/// once over the start: what it gives without rows rendered ahead, bit for bit.
+TEST(FinalGatherTest, RowsRenderedAheadOverTheBudgetAreRenderedAgain) {
+  const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
+  ASSERT_TRUE(s->meshed.base);
+  GatherOptions options;
+  options.memoryBytes = 100000;  // some 12 000 factors: a few rows
+  const GatherRows ahead = renderGatherRows(*s->meshed.base, s->meshed.scene.diagonal(), options);
+  EXPECT_FALSE(ahead.kept);
+  EXPECT_TRUE(ahead.rows.empty());
+  EXPECT_LT(ahead.factors, 20 * 12000);  // stopped soon after the budget, not at every vertex
+  const std::vector<glm::dvec3> start = *s->solution.gathered;
+  GatherStats withStats, withoutStats;
+  const auto with = finalGather(s->meshed.mesh, s->meshed.base.get(), s->meshed.scene.diagonal(), start, nullptr,
+                                options, &withStats, &ahead);
+  const auto without = finalGather(s->meshed.mesh, s->meshed.base.get(), s->meshed.scene.diagonal(), start,
+                                   nullptr, options, &withoutStats);
+  EXPECT_FALSE(withStats.iterated);
+  EXPECT_FALSE(withStats.renderedAhead);
+  EXPECT_EQ(with, without);
+}
+
 TEST(FinalGatherTest, SettingOffKeepsTheProgressiveSolution) {
   SolverBlock flags;
   flags.finalGather = false;

@@ -118,9 +118,10 @@ void printOutcome(const RadiositySolve& solve, const Solution& solution, const s
   if (solution.gathered) {
     const GatherStats& g = solution.gather;
     std::fprintf(stderr, "radiosity: progressive start %ld shots in %.2f s (unshot %.2e, %s); final gather at %d "
-                         "vertices, %d iterations (residual %.1e) in %.2f s; wrote %s\n",
+                         "vertices: hemicubes %.2f s%s, %d iterations (residual %.1e) in %.2f s; wrote %s\n",
                  solver.shots(), solver.seconds(), solver.unshotFraction(), stopName(solver.stopReason()), g.points,
-                 g.iterations, g.residual, g.hemicubeSeconds + g.solveSeconds, output.c_str());
+                 g.hemicubeSeconds, g.renderedAhead ? " (beside the rays and shots)" : "", g.iterations, g.residual,
+                 g.solveSeconds, output.c_str());
     return;
   }
   std::fprintf(stderr, "radiosity: %s after %ld shots in %.2f s (unshot %.2e, %s); wrote %s\n",
