@@ -163,7 +163,7 @@ Json gatherBlock(const Solution& solution) {
   return {{"points", g.points},           {"factors", g.factors},
           {"iterated", g.iterated},       {"iterations", g.iterations},
           {"residual", g.residual},       {"hemicube_seconds", g.hemicubeSeconds},
-          {"solve_seconds", g.solveSeconds}};
+          {"rendered_ahead", g.renderedAhead}, {"solve_seconds", g.solveSeconds}};
 }
 
 }  // namespace
