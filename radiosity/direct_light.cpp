@@ -463,11 +463,12 @@ bool DirectLight::fromEnds(const Probe& probe, const glm::dvec3& p, VertexLight&
   seen.assign(lights_.size(), {0.0, false});
   for (size_t t = 0; t < lights_.size(); ++t) {
     const LightPolygon& light = lights_[t];
+    // A penumbra is weighed sample by sample (compute): told first, before any factor.
+    const size_t set = bitsSet(*probe.visible, light.first, light.count);
+    if (set != 0 && set != size_t(light.count)) return false;
     const double F = unoccludedFactor(p, probe.normal, t);
     if (!(F > 0)) continue;
-    const size_t set = bitsSet(*probe.visible, light.first, light.count);
-    if (set != 0 && set != size_t(light.count)) return false;  // a penumbra: sample by sample
-    if (!whollyAbove(p, probe.normal, t)) return false;        // some samples below the horizon
+    if (!whollyAbove(p, probe.normal, t)) return false;  // some samples below the horizon
     seen[t] = {F, set != 0};
   }
   for (size_t t = 0; t < lights_.size(); ++t) {

@@ -49,6 +49,15 @@ void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, He
   cube.compute(offSurface(probe, sceneSize), probe.normal, hemicubeRotation(seed, kGatherStream + uint64_t(v), 0), out);
 }
 
+/// The vertices of `mesh` that gather, as the mesh the hemicubes draw: every one not black.
+std::vector<int> gatheringVertices(const PatchMesh& mesh) {
+  const Field rho = vertexReflectance(mesh);
+  std::vector<int> out;
+  for (size_t v = 0; v < rho.size(); ++v)
+    if (rho[v] != glm::dvec3(0.0)) out.push_back(int(v));
+  return out;
+}
+
 /// Renders the hemicubes of `mesh`'s vertices `which` over `drawn`'s elements into `out`
 /// (rows per vertex of mesh), each gathered over y at once if given, and let go once the
 /// rows outgrow the budget.
@@ -93,12 +102,8 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
 
 GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const GatherOptions& options, const Field* y,
                             const std::atomic<bool>* cancel) {
-  const Field rho = vertexReflectance(drawn);
-  std::vector<int> which;
-  for (size_t v = 0; v < rho.size(); ++v)
-    if (rho[v] != glm::dvec3(0.0)) which.push_back(int(v));
   GatherRows out;
-  renderRows(drawn, drawn, sceneSize, which, options, y, cancel, out);
+  renderRows(drawn, drawn, sceneSize, gatheringVertices(drawn), options, y, cancel, out);
   return out;
 }
 
@@ -293,10 +298,7 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
 }
 
 GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const GatherOptions& options) {
-  const GatherPoints points = gatherPoints(mesh, nullptr, vertexReflectance(mesh));
-  std::vector<int> gathering;
-  for (size_t v = 0; v < points.at.size(); ++v)
-    if (points.at[v]) gathering.push_back(int(v));
+  const std::vector<int> gathering = gatheringVertices(mesh);
   GatherEstimate out;
   if (gathering.empty()) return out;
   const FlatRegions regions(mesh, sceneSize);
@@ -351,20 +353,22 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   const auto clock = Clock::now();
   Rows rows;
   rows.kept = ofDrawn.kept && own.kept;
-  Field once(points.at.size(), glm::dvec3(0.0));
-  if (rows.kept) rows.of.assign(points.at.size(), nullptr);
-  for (size_t v = 0; v < points.at.size(); ++v) {
-    if (!points.at[v]) continue;
-    const int d = points.drawn[v];
-    if (rows.kept) rows.of[v] = d >= 0 ? &ofDrawn.rows[size_t(d)] : &own.rows[v];
-    if (d < 0 || !ofDrawn.once.empty()) once[v] = d >= 0 ? ofDrawn.once[size_t(d)] : own.once[v];
+  if (rows.kept) {
+    rows.of.assign(points.at.size(), nullptr);
+    for (size_t v = 0; v < points.at.size(); ++v)
+      if (points.at[v]) rows.of[v] = points.drawn[v] >= 0 ? &ofDrawn.rows[size_t(points.drawn[v])] : &own.rows[v];
   }
-  // Rows rendered ahead (kept, or they would have been rendered now) have not met y yet;
-  // gathered over it even if the loners' rows went over the budget.
-  if (ofDrawn.once.empty())
-    parallelFor(once.size(), workers, [&](size_t v, int) {
-      if (points.at[v] && points.drawn[v] >= 0) once[v] = gatherRow(ofDrawn.rows[size_t(points.drawn[v])], y);
-    }, 256);
+  // The single gather over y at each gathering vertex: rows rendered ahead (kept, or they
+  // would have been rendered now) have not met y yet, even if the loners' went over the budget.
+  Field once(points.at.size(), glm::dvec3(0.0));
+  parallelFor(once.size(), workers, [&](size_t v, int) {
+    if (!points.at[v]) return;
+    const int d = points.drawn[v];
+    if (d < 0)
+      once[v] = own.once[v];
+    else
+      once[v] = ofDrawn.once.empty() ? gatherRow(ofDrawn.rows[size_t(d)], y) : ofDrawn.once[size_t(d)];
+  }, 256);
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {
     const Field d = direct ? *direct : emittersGathered(drawn, rows, points, rho, workers);
