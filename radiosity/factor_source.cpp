@@ -22,13 +22,15 @@ HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double s
   for (int p = 0; p < int(mesh.patches.size()); ++p) emits_.push_back(mesh.emits(p));
 }
 
-void HemicubeFactors::factors(int patch, int index, const ShooterSample& sample,
+void HemicubeFactors::factors(const Shooter& shooter, int index, const ShooterSample& sample,
                               FormFactors& out, int worker) {
-  auto& hemicube = emits_[size_t(patch)] && !emitterHemicubes_.empty() ? emitterHemicubes_[worker]
-                                                                       : hemicubes_[worker];
-  hemicube->compute(sample.point, sample.normal,
-                    hemicubeRotation(seed_, uint64_t(patch), uint64_t(index)), out,
-                    mesh_.patches[patch].elements);
+  const bool alone = shooter.cluster < 0;
+  auto& hemicube = alone && emits_[size_t(shooter.patch)] && !emitterHemicubes_.empty() ? emitterHemicubes_[worker]
+                                                                                         : hemicubes_[worker];
+  // A cluster's rotations follow the patches', so that no cluster turns as a patch does.
+  const uint64_t stream = alone ? uint64_t(shooter.patch) : uint64_t(emits_.size()) + uint64_t(shooter.cluster);
+  hemicube->compute(sample.point, sample.normal, hemicubeRotation(seed_, stream, uint64_t(index)), out,
+                    alone ? mesh_.patches[size_t(shooter.patch)].elements : sample.elements);
 }
 
 }  // namespace rad

@@ -12,20 +12,26 @@ namespace rad {
 
 class PatchMesh;
 
+/// What shoots a sample: a patch, or a cluster of coplanar patches (shooter_clusters.h).
+struct Shooter {
+  int patch = 0;     ///< the patch; for a cluster, its first patch (its surface and plane)
+  int cluster = -1;  ///< the cluster, or -1: the patch alone
+};
+
 /// The factors from one shooter sample to every element. Calls with different `worker`
 /// numbers may run concurrently.
 class FactorSource {
  public:
   virtual ~FactorSource() = default;
-  /// Factors from sample `index` of patch `patch` to every element (sparse), and what escaped.
-  virtual void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+  /// Factors from sample `index` of the shooter to every element (sparse), and what escaped.
+  virtual void factors(const Shooter& shooter, int index, const ShooterSample& sample, FormFactors& out,
                        int worker = 0) = 0;
   /// How many workers may call factors() at once.
   virtual int workers() const { return 1; }
 };
 
-/// Hemicubes over the whole mesh, turned by (seed, patch, sample), the patch's own elements
-/// excluded. Emitting patches may use a finer resolution: direct light carries the sharpest
+/// Hemicubes over the whole mesh, turned by (seed, shooter, sample), the patch's own elements
+/// excluded (a cluster's: the sample's own; the others lie in the plane behind the eye). Emitting patches may use a finer resolution: direct light carries the sharpest
 /// detail (shadows, the floor at a block's base), and emitters shoot from few points.
 class HemicubeFactors : public FactorSource {
  public:
@@ -34,7 +40,7 @@ class HemicubeFactors : public FactorSource {
   /// regions and resolve pixels to elements (FlatRegions) instead of drawing every element.
   HemicubeFactors(const PatchMesh& mesh, int resolution, double sceneSize, unsigned seed,
                   int workers = 0, int emitterResolution = 0, bool regions = false);
-  void factors(int patch, int index, const ShooterSample& sample, FormFactors& out,
+  void factors(const Shooter& shooter, int index, const ShooterSample& sample, FormFactors& out,
                int worker = 0) override;
   int workers() const override { return int(hemicubes_.size()); }
 

@@ -51,8 +51,9 @@ bool isGrey(const PatchMesh& mesh) {
 ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,
                                      const SolverOptions& options)
     : mesh_(mesh), factors_(factors), options_(options), counter_(mesh, options),
+      clusters_(options.clusters ? std::make_unique<const ShooterClusters>(mesh) : nullptr),
       start_(std::chrono::steady_clock::now()),
-      cache_(mesh.patches.size(), options.factorCacheBytes) {
+      cache_(mesh.patches.size() + (clusters_ ? size_t(clusters_->size()) : 0), options.factorCacheBytes) {
   readElements();
   grey_ = isGrey(mesh);
   ledger_.unshot = ledger_.emitted;
@@ -188,10 +189,9 @@ void ProgressiveSolver::deliverDirect(const glm::dvec3& power, const FormFactors
   }
 }
 
-void ProgressiveSolver::samplePowers(int patch, std::vector<glm::dvec3>& powers,
+void ProgressiveSolver::samplePowers(const std::vector<ShooterSample>& samples, std::vector<glm::dvec3>& powers,
                                      std::vector<glm::dvec3>& emitted) const {
   const double omega = options_.overshoot;
-  const auto& samples = samples_[patch];
   powers.assign(samples.size(), glm::dvec3(0.0));
   emitted = powers;
   for (size_t index = 0; index < samples.size(); ++index) {
@@ -203,13 +203,13 @@ void ProgressiveSolver::samplePowers(int patch, std::vector<glm::dvec3>& powers,
   }
 }
 
-void ProgressiveSolver::deliverSamples(int patch, const std::vector<glm::dvec3>& powers,
+void ProgressiveSolver::deliverSamples(int slot, const std::vector<glm::dvec3>& powers,
                                        const std::vector<glm::dvec3>& emitted) {
   // Sample order, so that the result does not depend on the workers.
   for (size_t index = 0; index < powers.size(); ++index) {
     const glm::dvec3& power = powers[index];
     if (power == glm::dvec3(0.0)) continue;
-    const FormFactors& row = cache_.row(patch, int(index));
+    const FormFactors& row = cache_.row(slot, int(index));
     glm::dvec3 delivered = grey_ ? deliver<double>(power, row) : deliver<glm::dvec3>(power, row);
     if (emitted[index] != glm::dvec3(0.0)) deliverDirect(emitted[index], row);
     // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
@@ -239,19 +239,64 @@ void ProgressiveSolver::sumUnshot() {
   }
 }
 
+int ProgressiveSolver::patchCount(int patch) {
+  if (patchCounts_.empty()) patchCounts_.assign(mesh_.patches.size(), -1);
+  int& count = patchCounts_[size_t(patch)];
+  if (count < 0) count = counter_(patch);
+  return count;
+}
+
+int ProgressiveSolver::clusterCount(int cluster, int most) {
+  if (clusterCounts_.empty()) clusterCounts_.assign(size_t(clusters_->size()), -1);
+  int& count = clusterCounts_[size_t(cluster)];
+  if (count < 0) count = counter_((*clusters_)[cluster], most);
+  return count;
+}
+
+int ProgressiveSolver::chooseCluster(int patch) {
+  if (!clusters_) return -1;
+  int best = -1;
+  long mostSaved = 0;
+  for (int c = clusters_->above(patch); c >= 0; c = (*clusters_)[c].parent) {
+    int alone = 0;
+    for (int q : (*clusters_)[c].patches) alone += patchCount(q);
+    // `alone` is the same whenever the cluster is asked: so is the count kept for it.
+    const int together = clusterCount(c, alone / 2);
+    if (2 * together <= alone && alone - together > mostSaved) best = c, mostSaved = long(alone - together);
+  }
+  return best;
+}
+
 void ProgressiveSolver::shoot(int patch) {
-  if (samples_[patch].empty()) samples_[patch] = patchSamples(mesh_, patch, counter_(patch));
+  const int cluster = chooseCluster(patch);
+  if (cluster >= 0) {
+    if (clusterSamples_.empty()) clusterSamples_.resize(size_t(clusters_->size()));
+    auto& samples = clusterSamples_[size_t(cluster)];
+    const ShooterCluster& c = (*clusters_)[cluster];
+    if (samples.empty()) samples = clusterSamples(mesh_, c, clusterCounts_[size_t(cluster)]);
+    shootFrom(int(mesh_.patches.size()) + cluster, Shooter{c.patches.front(), cluster}, samples, c.patches);
+    ++clusterShots_;
+    return;
+  }
+  if (samples_[patch].empty()) samples_[patch] = patchSamples(mesh_, patch, patchCount(patch));
+  shootFrom(patch, Shooter{patch}, samples_[patch], {patch});
+}
+
+void ProgressiveSolver::shootFrom(int slot, const Shooter& shooter, const std::vector<ShooterSample>& samples,
+                                  const std::vector<int>& patches) {
   // The power each element sends (ω times its unshot power) is fixed before any sample
   // shoots; the emission part of it travels the same way and is also kept apart.
   std::vector<glm::dvec3> powers, emitted;
-  samplePowers(patch, powers, emitted);
-  cache_.compute(factors_, patch, samples_[patch], powers);
-  deliverSamples(patch, powers, emitted);
+  samplePowers(samples, powers, emitted);
+  cache_.compute(factors_, slot, shooter, samples, powers);
+  deliverSamples(slot, powers, emitted);
   // Keep the new rows while the budget allows; otherwise let them go.
   cache_.keepWithinBudget();
-  keepRemainder(patch);
+  for (int p : patches) {
+    keepRemainder(p);
+    ++shotsOf_[p];
+  }
   ++shots_;
-  ++shotsOf_[patch];
   sumUnshot();
 }
 

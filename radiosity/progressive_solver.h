@@ -2,6 +2,7 @@
 // Progressive refinement radiosity (Cohen, Chen, Wallace & Greenberg 1988): patches shoot
 // their unshot power, elements receive, with an energy ledger kept after every shot.
 #include <chrono>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -9,6 +10,7 @@
 #include "mesh/color.h"
 #include "radiosity/factor_cache.h"
 #include "radiosity/factor_source.h"
+#include "radiosity/shooter_clusters.h"
 #include "radiosity/shooter_samples.h"
 #include "radiosity/solver_options.h"
 
@@ -36,6 +38,8 @@ class ProgressiveSolver {
 
   Stop stopReason() const { return stop_; }
   long shots() const { return shots_; }
+  /// Shots in which a cluster of patches shot together.
+  long clusterShots() const { return clusterShots_; }
   /// Seconds spent in the constructor and in step(), the solver's own time: what the caller
   /// does between steps (measuring, printing) is not counted, nor by the time limit.
   double seconds() const;
@@ -74,12 +78,25 @@ class ProgressiveSolver {
   /// The stop the options call for now (tolerance, shots, time), or Stop::None.
   Stop stopCondition() const;
   bool stepOnce();
+  /// Shoots from the patch, or from the cluster above it that chooseCluster picks.
   void shoot(int patch);
-  /// The power each of the patch's samples sends (ω times its elements' unshot power), and
-  /// the emission part of it.
-  void samplePowers(int patch, std::vector<glm::dvec3>& powers, std::vector<glm::dvec3>& emitted) const;
+  /// The cluster above the patch whose shot saves the most hemicubes against its patches
+  /// shooting one by one, if it takes at most half of theirs; else -1.
+  int chooseCluster(int patch);
+  /// Shooting points of a patch, and of a cluster (most + 1 if more than `most`, the same
+  /// each time it is asked), counted once (SampleCounter).
+  int patchCount(int patch);
+  int clusterCount(int cluster, int most);
+  /// One shot: every sample of the shooter (its factors in cache slot `slot`) sends its share
+  /// of the patches' unshot power.
+  void shootFrom(int slot, const Shooter& shooter, const std::vector<ShooterSample>& samples,
+                 const std::vector<int>& patches);
+  /// The power each sample sends (ω times its elements' unshot power), and the emission part
+  /// of it.
+  void samplePowers(const std::vector<ShooterSample>& samples, std::vector<glm::dvec3>& powers,
+                    std::vector<glm::dvec3>& emitted) const;
   /// Delivers every sample's power through its cached factors, in sample order.
-  void deliverSamples(int patch, const std::vector<glm::dvec3>& powers,
+  void deliverSamples(int slot, const std::vector<glm::dvec3>& powers,
                       const std::vector<glm::dvec3>& emitted);
   /// The shooter keeps (1 − ω) of its unshot power.
   void keepRemainder(int patch);
@@ -97,7 +114,10 @@ class ProgressiveSolver {
   FactorSource& factors_;
   SolverOptions options_;
   SampleCounter counter_;
-  std::vector<std::vector<ShooterSample>> samples_;
+  std::vector<std::vector<ShooterSample>> samples_;  // per patch, once it shoots
+  std::unique_ptr<const ShooterClusters> clusters_;  // null: every patch shoots alone
+  std::vector<std::vector<ShooterSample>> clusterSamples_;
+  std::vector<int> patchCounts_, clusterCounts_;     // -1: not counted yet
   std::vector<glm::dvec3> B_, dB_, rho_;
   std::vector<glm::dvec3> direct_, dE_;  // received from emission; emission not yet shot
   std::vector<double> area_;
@@ -108,11 +128,11 @@ class ProgressiveSolver {
   glm::dvec3 rhoMean_{0.0};
   double totalArea_ = 0;
   EnergyLedger ledger_;
-  long shots_ = 0;
+  long shots_ = 0, clusterShots_ = 0;
   Stop stop_ = Stop::None;
   std::chrono::steady_clock::time_point start_;
   double elapsed_ = 0;  // seconds spent constructing and in step(): not the caller's time between
-  FactorCache cache_;  // each sample's factors, within options.factorCacheBytes
+  FactorCache cache_;  // each sample's factors (patches, then clusters), within options.factorCacheBytes
   bool grey_ = false;
 };
 

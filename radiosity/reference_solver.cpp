@@ -19,7 +19,7 @@ void addPatchColumns(Eigen::MatrixXd& G, const PatchMesh& mesh, FactorSource& fa
   const auto shooters = patchSamples(mesh, patch, samples);
   for (int index = 0; index < int(shooters.size()); ++index) {
     const ShooterSample& s = shooters[index];
-    factors.factors(patch, index, s, ff, worker);
+    factors.factors(Shooter{patch}, index, s, ff, worker);
     for (size_t k = 0; k < ff.elements.size(); ++k) {
       int j = ff.elements[k];
       for (size_t m = 0; m < s.elements.size(); ++m) {

@@ -95,6 +95,8 @@ struct Settings : Shooting {
   int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
+  /// Coplanar patches far from other surfaces shoot together (radiosity/shooter_clusters.h).
+  bool clusterShooters = true;
 
   bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
   /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to

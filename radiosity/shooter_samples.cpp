@@ -103,12 +103,12 @@ glm::dvec3 stratumPoint(const std::vector<Part>& stratum, const glm::dvec3& norm
   return nearest;
 }
 
-/// The patch's elements cut into enough m×m parts that it has at least `count` of them,
-/// spread by area.
-std::vector<Part> patchParts(const PatchMesh& mesh, const Patch& p, int count) {
+/// The elements (of total `area`) cut into enough m×m parts that they have at least `count`
+/// of them, spread by area.
+std::vector<Part> elementParts(const PatchMesh& mesh, const std::vector<int>& elements, double area, int count) {
   std::vector<Part> parts;
-  for (int e : p.elements) {
-    double quota = double(count) * mesh.area(e) / p.area;
+  for (int e : elements) {
+    double quota = double(count) * mesh.area(e) / area;
     int m = std::max(1, int(std::ceil(std::sqrt(quota) - 1e-9)));
     subdivide(e, mesh.corners(e), m, parts);
   }
@@ -130,62 +130,110 @@ void addShare(ShooterSample& s, const Part& part) {
   }
 }
 
-/// The mean patch diameter (the hash's cell size), 1 without patches.
-double meanDiameter(const PatchMesh& mesh) {
-  if (mesh.patches.empty()) return 1;
-  double sum = 0;
-  for (const Patch& p : mesh.patches) sum += p.diameter;
-  return std::max(sum / double(mesh.patches.size()), 1e-300);
+/// Per element: its centroid, or none when the counts need no distances.
+std::vector<glm::dvec3> elementCentroids(const PatchMesh& mesh, const SolverOptions& options) {
+  std::vector<glm::dvec3> out;
+  if (options.proximitySamples <= 0 || mesh.patches.empty()) return out;
+  out.resize(size_t(mesh.elementCount()));
+  for (int e = 0; e < mesh.elementCount(); ++e) out[size_t(e)] = mesh.centroid(e);
+  return out;
 }
 
 }  // namespace
 
 SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options)
-    : mesh_(mesh), options_(options), centroids_(meanDiameter(mesh)) {
-  if (options.proximitySamples <= 0 || mesh.patches.empty()) return;
-  for (int e = 0; e < mesh.elementCount(); ++e) centroids_.insert(mesh.centroid(e), e);
+    : mesh_(mesh), options_(options), centroid_(elementCentroids(mesh, options)), centroids_(centroid_) {
+  normal_.resize(centroid_.size());
+  for (size_t e = 0; e < normal_.size(); ++e) normal_[e] = mesh.normal(int(e));
 }
 
 double SampleCounter::nearestFacing(int patch, double reach) const {
   const Patch& p = mesh_.patches[patch];
-  double nearest = HUGE_VAL;
-  centroids_.visit(p.centroid - glm::dvec3(reach), p.centroid + glm::dvec3(reach), [&](int e) {
+  return centroids_.nearest(p.centroid, p.centroid, reach, [&](int e) {
     // An element of another plane facing the patch (occlusion ignored).
-    glm::dvec3 d = mesh_.centroid(e) - p.centroid;
-    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, mesh_.normal(e)) >= 0) return;
-    nearest = std::min(nearest, glm::length(d));
+    const glm::dvec3 d = centroid_[size_t(e)] - p.centroid;
+    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, normal_[size_t(e)]) >= 0) return HUGE_VAL;
+    return glm::length(d);
   });
-  return nearest;
 }
 
-int SampleCounter::operator()(int patch) const {
-  const Patch& p = mesh_.patches[patch];
-  if (mesh_.emits(patch)) return options_.emitterSamples;
+int SampleCounter::proximityCount(double diameter, double nearest) const {
   const int fewest = options_.shooterSamples;
   const int most = std::max(fewest, options_.emitterSamples);
-  if (options_.proximitySamples <= 0) return fewest;
-  // Only elements nearer than D·√(k / fewest) ask for more than the fewest points.
-  const double reach = p.diameter * std::sqrt(options_.proximitySamples / fewest);
-  const double nearest = nearestFacing(patch, reach);
-  if (!(nearest < reach)) return fewest;
-  const double ratio = p.diameter / nearest;
+  if (!(nearest < HUGE_VAL)) return fewest;
+  const double ratio = diameter / nearest;
   const double wanted = std::ceil(options_.proximitySamples * ratio * ratio - 1e-9);
   return int(std::min<double>(std::max<double>(wanted, fewest), most));
 }
 
-std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count) {
-  const Patch& p = mesh.patches[patch];
+/// Only elements nearer than D·√(k / fewest) ask for more than the fewest points.
+int SampleCounter::operator()(int patch) const {
+  const Patch& p = mesh_.patches[patch];
+  if (mesh_.emits(patch)) return options_.emitterSamples;
+  if (options_.proximitySamples <= 0) return options_.shooterSamples;
+  const double reach = p.diameter * std::sqrt(options_.proximitySamples / options_.shooterSamples);
+  return proximityCount(p.diameter, nearestFacing(patch, reach));
+}
+
+int SampleCounter::operator()(const ShooterCluster& cluster, int most) const {
+  const double k = kClusterProximitySamples, D = cluster.diameter;
+  const int fewest = options_.shooterSamples;
+  // First whether anything lies too near for `most` points, within the small reach that asks:
+  // most clusters near other surfaces end there. Then the nearest within the fewest's reach.
+  if (nearestFacing(cluster, D * std::sqrt(k / most)) < HUGE_VAL) return most + 1;
+  const double nearest = nearestFacing(cluster, D * std::sqrt(k / fewest));
+  if (!(nearest < HUGE_VAL)) return std::min(fewest, most + 1);
+  // Not capped at the emitters' count, as a patch's is: a cluster wanting more shoots as patches.
+  const double wanted = std::max<double>(fewest, std::ceil(k * (D / nearest) * (D / nearest) - 1e-9));
+  return wanted > most ? most + 1 : int(wanted);
+}
+
+double SampleCounter::nearestFacing(const ShooterCluster& c, double reach) const {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (double a : {c.uLo, c.uHi})
+    for (double b : {c.vLo, c.vHi}) {
+      const glm::dvec3 corner = c.origin + a * c.u + b * c.v;
+      lo = glm::min(lo, corner);
+      hi = glm::max(hi, corner);
+    }
+  return centroids_.nearest(lo, hi, reach, [&](int e) {
+    // An element in front of the plane, facing the cluster's point nearest to it.
+    const glm::dvec3 d = centroid_[size_t(e)] - c.origin;
+    if (glm::dot(d, c.normal) <= 1e-9 * c.diameter) return HUGE_VAL;
+    const double a = std::clamp(glm::dot(d, c.u), c.uLo, c.uHi), b = std::clamp(glm::dot(d, c.v), c.vLo, c.vHi);
+    const glm::dvec3 toward = centroid_[size_t(e)] - (c.origin + a * c.u + b * c.v);
+    if (glm::dot(toward, normal_[size_t(e)]) >= 0) return HUGE_VAL;
+    return glm::length(toward);
+  });
+}
+
+namespace {
+
+/// `count` stratified samples over the elements (of total `area`, in the plane of `normal`).
+std::vector<ShooterSample> samplesOver(const PatchMesh& mesh, const std::vector<int>& elements, double area,
+                                       const glm::dvec3& normal, int count) {
   std::vector<std::vector<Part>> strata;
-  bisectByArea(patchParts(mesh, p, count), count, strata);
+  bisectByArea(elementParts(mesh, elements, area, count), count, strata);
   std::vector<ShooterSample> out;
   for (const auto& stratum : strata) {
     ShooterSample s;
-    s.point = stratumPoint(stratum, p.normal);
-    s.normal = p.normal;
+    s.point = stratumPoint(stratum, normal);
+    s.normal = normal;
     for (const Part& part : stratum) addShare(s, part);
     out.push_back(std::move(s));
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count) {
+  const Patch& p = mesh.patches[patch];
+  return samplesOver(mesh, p.elements, p.area, p.normal, count);
+}
+
+std::vector<ShooterSample> clusterSamples(const PatchMesh& mesh, const ShooterCluster& cluster, int count) {
+  return samplesOver(mesh, cluster.elements, cluster.area, cluster.normal, count);
 }
 
 }  // namespace rad

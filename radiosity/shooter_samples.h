@@ -5,7 +5,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/spatial_hash.h"
+#include "radiosity/point_tree.h"
+#include "radiosity/shooter_clusters.h"
 #include "radiosity/solver_options.h"
 
 namespace rad {
@@ -23,21 +24,38 @@ struct ShooterSample {
 /// options.shooterSamples, raised to proximitySamples·(D/d)² (at most emitterSamples), D the
 /// patch's diameter and d the distance from its centroid to the nearest element of another
 /// plane facing it: the proximity error of point shooters falls as the square of the points'
-/// spacing (oracles.md §3). Element centroids sit in a spatial hash, so only nearby ones are
-/// visited.
+/// spacing (oracles.md §3). Element centroids sit in a bounding-volume hierarchy, so only nearby
+/// ones are visited.
+/// A cluster's shooting points are spaced no wider than a quarter of the distance to the
+/// nearest element facing it: k = 16 in k·(D/d)². A patch's points may be as far apart as that
+/// distance (k = 0.7), but its own size keeps them much closer where it matters: shooting
+/// clusters by a patch's k put 6.5 % instead of 3.8 % true error on CornellBox-Original (no
+/// gather), by 4 and 16: 4.3 % and 3.8 %.
+constexpr double kClusterProximitySamples = 16;
+
 class SampleCounter {
  public:
   SampleCounter(const PatchMesh& mesh, const SolverOptions& options);
   int operator()(int patch) const;
+  /// A cluster's points: k·(D/d)² with k = kClusterProximitySamples and d measured from the
+  /// cluster's nearest point (not its centroid), at least the fewest; most + 1 when that is
+  /// more than `most`.
+  int operator()(const ShooterCluster& cluster, int most) const;
 
  private:
-  /// The distance from the patch's centroid to the nearest element facing it within `reach`
-  /// (perhaps a little beyond; HUGE_VAL when there is none).
+  /// The distance from the patch's centroid to the nearest element facing it, if under
+  /// `reach` (HUGE_VAL otherwise).
   double nearestFacing(int patch, double reach) const;
+  /// The distance from the cluster's nearest point to the nearest element facing it, if under
+  /// `reach` (HUGE_VAL otherwise).
+  double nearestFacing(const ShooterCluster& cluster, double reach) const;
+  /// A patch's k·(D/d)² points, at least the fewest, at most the emitters' count.
+  int proximityCount(double diameter, double nearest) const;
 
   const PatchMesh& mesh_;
   SolverOptions options_;
-  SpatialHash centroids_;  // element centroids, in cells of the mean patch diameter
+  std::vector<glm::dvec3> centroid_, normal_;  // per element, once
+  PointTree centroids_;                          // over centroid_
 };
 
 /// `count` stratified samples over a patch. Each element is cut into m×m congruent triangles,
@@ -45,5 +63,7 @@ class SampleCounter {
 /// into `count` strata of about equal area by recursive bisection, and each stratum shoots its
 /// parts' shares of their elements' power from its centroid. Each element's weights sum to 1.
 std::vector<ShooterSample> patchSamples(const PatchMesh& mesh, int patch, int count);
+/// The same over a cluster's elements.
+std::vector<ShooterSample> clusterSamples(const PatchMesh& mesh, const ShooterCluster& cluster, int count);
 
 }  // namespace rad

@@ -241,6 +241,7 @@ SolverOptions solverOptions(const Settings& settings, size_t patches) {
   options.emitterSamples = settings.emitterSamples;
   options.shooterSamples = settings.shooterSamples;
   options.proximitySamples = settings.proximitySamples;
+  options.clusters = settings.clusterShooters;
   options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
   return options;
 }

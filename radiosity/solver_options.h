@@ -21,6 +21,9 @@ struct SolverOptions {
   /// shooting again costs no hemicube (the factors are the same: same point, same rotation).
   /// A fixed budget, whatever the scene size; 0 recomputes every time.
   size_t factorCacheBytes = size_t(kDefaultFactorCacheMb * 1024 * 1024);
+  /// Let coplanar patches shoot together where that takes fewer hemicubes than shooting them
+  /// one by one (radiosity/shooter_clusters.h).
+  bool clusters = true;
 };
 
 }  // namespace rad

@@ -21,7 +21,9 @@
 namespace rad {
 namespace {
 
-const std::string kDocs = test::kSourceDir + "/docs/";
+using test::kDocs;
+using test::trueError;
+using test::trueErrorOf;
 
 /// Every vertex and every element of the closed furnace within this share of E/(1 − ρ)
 /// (the accurate-vertices issue's targets; measured 0.04 % or better at every ρ).
@@ -56,20 +58,6 @@ INSTANTIATE_TEST_SUITE_P(Reflectances, FurnaceGatherTest,
                          [](const ::testing::TestParamInfo<FurnaceCase>& info) {
                            return "rho_" + std::to_string(int(std::lround(100 * info.param.rho)));
                          });
-
-/// The true error of what the default solve shows, against a stored reference; only the
-/// points whose tag starts with `tag`.
-ErrorSummary trueErrorOf(const test::Solved& s, const std::string& reference, const std::string& tag) {
-  std::vector<ReferencePoint> points = readReferenceFile(reference).points;
-  points.erase(std::remove_if(points.begin(), points.end(),
-                              [&](const ReferencePoint& p) { return p.tag.compare(0, tag.size(), tag) != 0; }),
-               points.end());
-  return TrueError(s.meshed.mesh, s.meshed.scene, points, reference).measure(s.shown);
-}
-
-double trueError(const test::Solved& s, const std::string& reference, const std::string& tag = "") {
-  return trueErrorOf(s, reference, tag).rms;
-}
 
 /// Limits on the Cornell box's true error at default settings (the accurate-vertices issue's
 /// targets), reference noise included (0.79 % and 0.62 % RMS). Measured: 1.56 % at all 300

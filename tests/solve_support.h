@@ -1,11 +1,14 @@
 #pragma once
 // A scene solved the way `radiosity solve` solves it: the shipping pipeline of
 // radiosity/solve.h, default settings unless the flags say otherwise.
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "mesh/reference_points.h"
 #include "radiosity/solve.h"
+#include "radiosity/true_error.h"
 #include "tests/support.h"
 
 namespace rad::test {
@@ -33,6 +36,23 @@ inline std::unique_ptr<Solved> solveLikeCli(const std::string& path, const Solve
   s->solution = s->solve->bake();
   s->shown = shownAtVertices(s->meshed, s->solution);
   return s;
+}
+
+/// The stored references (radiosity reference) of docs/.
+inline const std::string kDocs = kSourceDir + "/docs/";
+
+/// The true error of what a solve shows, against a stored reference; only the points whose
+/// tag starts with `tag`.
+inline ErrorSummary trueErrorOf(const Solved& s, const std::string& reference, const std::string& tag = "") {
+  std::vector<ReferencePoint> points = readReferenceFile(reference).points;
+  points.erase(std::remove_if(points.begin(), points.end(),
+                              [&](const ReferencePoint& p) { return p.tag.compare(0, tag.size(), tag) != 0; }),
+               points.end());
+  return TrueError(s.meshed.mesh, s.meshed.scene, points, reference).measure(s.shown);
+}
+
+inline double trueError(const Solved& s, const std::string& reference, const std::string& tag = "") {
+  return trueErrorOf(s, reference, tag).rms;
 }
 
 }  // namespace rad::test

@@ -35,8 +35,8 @@ class SurfaceFactors : public FactorSource {
     area_.assign(F_.size(), 0.0);
     for (int e = 0; e < mesh.elementCount(); ++e) area_[mesh.surface(e)] += mesh.area(e);
   }
-  void factors(int patch, int, const ShooterSample&, FormFactors& out, int) override {
-    int from = mesh_.patches[patch].surface;
+  void factors(const Shooter& shooter, int, const ShooterSample&, FormFactors& out, int) override {
+    int from = mesh_.patches[shooter.patch].surface;
     out.elements.clear();
     out.factors.clear();
     double sum = 0;
@@ -209,6 +209,7 @@ TEST(ReferenceTest, EverySolverConvergesToTheDirectSolutionOnTheSameFactors) {
     HemicubeFactors factors(mesh, 64, scene.diagonal(), 3);
     SolverOptions options;
     options.tolerance = 1e-10;
+    options.clusters = false;  // the very same factors: every patch shoots alone
     TransportMatrix system(mesh, factors, options);
     std::vector<glm::dvec3> direct = system.solveDirect();
 

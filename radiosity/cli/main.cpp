@@ -102,6 +102,9 @@ void addShootingFlags(CLI::App& app, SolverBlock& flags) {
   addInRange(app, "--proximity-samples", flags.proximitySamples, 0.0, 65536.0,
              "More shooting points near other surfaces: k·(D/d)² for a patch of diameter D "
              "whose nearest facing element lies d away (solver.proximity_samples; default 0.7)");
+  app.add_option("--cluster-shooters", flags.clusterShooters,
+                 "Let patches of one plane far from other surfaces shoot together from fewer points, "
+                 "true or false (solver.cluster_shooters; default true)");
   addInRange(app, "--factor-cache-mb", flags.factorCacheMb, 0.0, 1e9,
              "Memory for reusing a patch's form factors when it shoots again, MiB "
              "(solver.factor_cache_mb; default 256; 0: recompute)");

@@ -16,6 +16,7 @@ void addShootingSettings(Json& s, const Settings& settings) {
   s["emitter_samples"] = settings.emitterSamples;
   s["shooter_samples"] = settings.shooterSamples;
   s["proximity_samples"] = settings.proximitySamples;
+  s["cluster_shooters"] = settings.clusterShooters;
   s["factor_cache_mb"] = settings.factorCacheMb;
 }
 
@@ -141,6 +142,7 @@ Json perSurfaceTable(const ErrorSummary& e) {
 /// What the solver did: shots, hemicubes, cache, time and why it stopped.
 void addRunFields(Json& report, const ProgressiveSolver& solver) {
   report["shots"] = solver.shots();
+  report["cluster_shots"] = solver.clusterShots();
   report["hemicubes"] = solver.hemicubes();
   report["factor_cache_bytes"] = solver.cachedBytes();
   report["seconds"] = solver.seconds();

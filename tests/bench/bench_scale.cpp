@@ -5,7 +5,7 @@
 // the process's peak memory (MiB) once the stage is done. Peak memory is the process's, so
 // each size runs in a process of its own (tests/bench/scale.sh runs them all).
 //
-//   bench_scale TRIANGLES [SCENE] [--solve]
+//   bench_scale TRIANGLES [SCENE] [--solve] [--no-gather] [--no-clusters]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,15 +89,20 @@ struct Row {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_scale TRIANGLES [SCENE] [--solve]\n");
+    std::fprintf(stderr, "usage: bench_scale TRIANGLES [SCENE] [--solve] [--no-gather] [--no-clusters]\n");
     return 2;
   }
   const size_t target = size_t(std::atof(argv[1]));
   std::string path = std::string(RAD_SOURCE_DIR) + "/../shared/scenes/bitterli/staircase2/scene.json";
   bool solve = false;
+  rad::SolverBlock flags;  // as the command line's flags
   for (int i = 2; i < argc; ++i) {
     if (std::string(argv[i]) == "--solve")
       solve = true;
+    else if (std::string(argv[i]) == "--no-gather")
+      flags.finalGather = false;
+    else if (std::string(argv[i]) == "--no-clusters")
+      flags.clusterShooters = false;
     else
       path = argv[i];
   }
@@ -109,7 +114,7 @@ int main(int argc, char** argv) {
     row.triangles = fileTriangles(scene);
     const double loading = rad::StageTimes::since(start), loadingPeak = rad::StageTimes::peakMiB();
     start = Clock::now();
-    const rad::Settings settings = rad::resolveSettings(scene, {});
+    const rad::Settings settings = rad::resolveSettings(scene, flags);
     // As `radiosity solve` meshes: with a solve to follow, the gather's hemicubes render beside
     // the rays (their time is then in "direct light and refinement" and "shooting" as well).
     rad::MeshingOptions options;
