@@ -1,5 +1,6 @@
 #include "radiosity/factor_source.h"
 
+#include "mesh/error.h"
 #include "mesh/parallel.h"
 #include "mesh/patch_mesh.h"
 
@@ -25,12 +26,13 @@ HemicubeFactors::HemicubeFactors(const PatchMesh& mesh, int resolution, double s
 void HemicubeFactors::factors(const Shooter& shooter, int index, const ShooterSample& sample,
                               FormFactors& out, int worker) {
   const bool alone = shooter.cluster < 0;
-  auto& hemicube = alone && emits_[size_t(shooter.patch)] && !emitterHemicubes_.empty() ? emitterHemicubes_[worker]
-                                                                                         : hemicubes_[worker];
+  RAD_CHECK(alone || shooter.elements);
+  const bool finer = alone && emits_[size_t(shooter.patch)] && !emitterHemicubes_.empty();
+  auto& hemicube = finer ? emitterHemicubes_[worker] : hemicubes_[worker];
   // A cluster's rotations follow the patches', so that no cluster turns as a patch does.
   const uint64_t stream = alone ? uint64_t(shooter.patch) : uint64_t(emits_.size()) + uint64_t(shooter.cluster);
   hemicube->compute(sample.point, sample.normal, hemicubeRotation(seed_, stream, uint64_t(index)), out,
-                    alone ? mesh_.patches[size_t(shooter.patch)].elements : sample.elements);
+                    alone ? mesh_.patches[size_t(shooter.patch)].elements : *shooter.elements);
 }
 
 }  // namespace rad

@@ -16,6 +16,8 @@ class PatchMesh;
 struct Shooter {
   int patch = 0;     ///< the patch; for a cluster, its first patch (its surface and plane)
   int cluster = -1;  ///< the cluster, or -1: the patch alone
+  /// A cluster's elements, which its hemicubes leave out as a patch's leave out its own.
+  const std::vector<int>* elements = nullptr;
 };
 
 /// The factors from one shooter sample to every element. Calls with different `worker`
@@ -24,14 +26,14 @@ class FactorSource {
  public:
   virtual ~FactorSource() = default;
   /// Factors from sample `index` of the shooter to every element (sparse), and what escaped.
-  virtual void factors(const Shooter& shooter, int index, const ShooterSample& sample, FormFactors& out,
-                       int worker = 0) = 0;
+  virtual void factors(const Shooter& shooter, int index, const ShooterSample& sample,
+                       FormFactors& out, int worker = 0) = 0;
   /// How many workers may call factors() at once.
   virtual int workers() const { return 1; }
 };
 
-/// Hemicubes over the whole mesh, turned by (seed, shooter, sample), the patch's own elements
-/// excluded (a cluster's: the sample's own; the others lie in the plane behind the eye). Emitting patches may use a finer resolution: direct light carries the sharpest
+/// Hemicubes over the whole mesh, turned by (seed, shooter, sample), the shooter's own
+/// elements excluded. Emitting patches may use a finer resolution: direct light carries the sharpest
 /// detail (shadows, the floor at a block's base), and emitters shoot from few points.
 class HemicubeFactors : public FactorSource {
  public:

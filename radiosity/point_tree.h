@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -24,9 +25,12 @@ class PointTree {
     if (!points_.empty()) build(0, uint32_t(points_.size()));
   }
 
-  /// The smallest distance(i) < reach over the points i whose distance to the box [lo, hi] is
-  /// under the best found so far; `distance` returns HUGE_VAL for a point that does not count,
-  /// and must be at least the point's distance to the box. HUGE_VAL when none is under reach.
+  /// The smallest distance(i) over the points, if under `reach` (HUGE_VAL otherwise).
+  /// `distance` returns HUGE_VAL for a point that does not count; it must never be less than
+  /// the point's distance to the box [lo, hi], so that subtrees farther from the box than the
+  /// best found so far are skipped.
+  const std::vector<glm::dvec3>& points() const { return points_; }
+
   template <class Distance>
   double nearest(const glm::dvec3& lo, const glm::dvec3& hi, double reach, Distance&& distance) const {
     if (nodes_.empty()) return HUGE_VAL;

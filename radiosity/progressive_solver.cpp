@@ -274,7 +274,8 @@ void ProgressiveSolver::shoot(int patch) {
     auto& samples = clusterSamples_[size_t(cluster)];
     const ShooterCluster& c = (*clusters_)[cluster];
     if (samples.empty()) samples = clusterSamples(mesh_, c, clusterCounts_[size_t(cluster)]);
-    shootFrom(int(mesh_.patches.size()) + cluster, Shooter{c.patches.front(), cluster}, samples, c.patches);
+    shootFrom(int(mesh_.patches.size()) + cluster, Shooter{c.patches.front(), cluster, &c.elements}, samples,
+              c.patches);
     ++clusterShots_;
     return;
   }

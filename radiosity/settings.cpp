@@ -68,7 +68,7 @@ void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& fl
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
   s.proximitySamples = pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
-  s.clusterShooters = pick(flags.clusterShooters, file.clusterShooters, true);
+  s.clusterShooters = pick(flags.clusterShooters, file.clusterShooters, kDefaultClusterShooters);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
 }
 

@@ -29,6 +29,8 @@ constexpr int kDefaultEmitterHemicubeResolution = 256;
 constexpr int kDefaultShooterSamples = 1;
 constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
+/// Coplanar patches far from other surfaces shoot together (radiosity/shooter_clusters.h).
+constexpr bool kDefaultClusterShooters = true;
 /// With the final gather the progressive solve only starts the vertex system, which the gather
 /// iterates to convergence from any start: its shooting defaults are then a cheap start. On
 /// the Cornell box the gathered true error is the same to 0.01 % (1.70 %, 4.04 % within 50 mm
@@ -92,11 +94,10 @@ struct Settings : Shooting {
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = kDefaultOvershoot;  ///< ω of overshooting; 1: plain shooting
   std::optional<double> exposure;  ///< unset: chosen automatically
-  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
+  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch (or cluster)
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
-  /// Coplanar patches far from other surfaces shoot together (radiosity/shooter_clusters.h).
-  bool clusterShooters = true;
+  bool clusterShooters = kDefaultClusterShooters;  ///< coplanar patches may shoot together
 
   bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
   /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to

@@ -13,15 +13,21 @@ namespace rad {
 namespace {
 
 /// Normals and plane offsets equal to this (offsets relative to the scene's extent) make one
-/// plane: far below the hemicube's eye offset (1e-6 of the scene), so that a cluster's own
-/// patches lie behind the eye of every hemicube it shoots from.
+/// plane: far below the hemicube's eye offset (1e-6 of the scene). A cluster's hemicubes
+/// leave its own elements out all the same.
 constexpr double kSamePlane = 1e-9;
 
 using PlaneKey = std::tuple<int, int, long long, long long, long long, long long>;
 
-/// The extent of the patches' centroids, plus their widest: the scale plane offsets are
-/// compared at.
-double sceneExtent(const PatchMesh& mesh) {
+/// Where plane offsets are measured from and at what scale: the low corner of the patches'
+/// centroids, and their extent plus the widest patch (so that offsets stay within about one
+/// extent, whatever the scene's distance from its origin).
+struct Extent {
+  glm::dvec3 corner{0.0};
+  double size = 1;
+};
+
+Extent sceneExtent(const PatchMesh& mesh) {
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
   double widest = 0;
   for (const Patch& p : mesh.patches) {
@@ -29,12 +35,14 @@ double sceneExtent(const PatchMesh& mesh) {
     hi = glm::max(hi, p.centroid);
     widest = std::max(widest, p.diameter);
   }
-  return mesh.patches.empty() ? 1.0 : std::max(glm::length(hi - lo) + widest, 1e-300);
+  if (mesh.patches.empty()) return {};
+  return {lo, std::max(glm::length(hi - lo) + widest, 1e-300)};
 }
 
-PlaneKey planeKey(const Patch& p, double extent) {
+PlaneKey planeKey(const Patch& p, const Extent& extent) {
   auto q = [](double x) { return (long long)std::llround(x / kSamePlane); };
-  return {p.surface, p.side, q(p.normal.x), q(p.normal.y), q(p.normal.z), q(glm::dot(p.normal, p.centroid) / extent)};
+  const double offset = glm::dot(p.normal, p.centroid - extent.corner) / extent.size;
+  return {p.surface, p.side, q(p.normal.x), q(p.normal.y), q(p.normal.z), q(offset)};
 }
 
 /// A unit vector perpendicular to n.
@@ -47,7 +55,7 @@ glm::dvec3 perpendicular(const glm::dvec3& n) {
 
 ShooterClusters::ShooterClusters(const PatchMesh& mesh, int maxPatches) : mesh_(mesh) {
   above_.assign(mesh.patches.size(), -1);
-  const double extent = sceneExtent(mesh);
+  const Extent extent = sceneExtent(mesh);
   std::map<PlaneKey, std::vector<int>> planes;
   for (int p = 0; p < int(mesh.patches.size()); ++p)
     if (!mesh.emits(p)) planes[planeKey(mesh.patches[p], extent)].push_back(p);

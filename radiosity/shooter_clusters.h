@@ -2,9 +2,8 @@
 // Shooter clusters: the patches of one plane grouped into a binary hierarchy, so that where
 // they lie far from other surfaces, a group of them shoots its unshot power together from fewer
 // points than its patches would one by one (each patch needs at least one hemicube). How many
-// points a cluster needs follows the same proximity rule as a patch (SampleCounter), measured
-// from the nearest point of the cluster: its sample spacing is never coarser than its patches'
-// own, so the cluster shoots as accurately as they would.
+// points a cluster needs (SampleCounter) keeps them no farther apart than 1/√2 of the distance
+// from the cluster's nearest point to the nearest element facing it.
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -13,7 +12,9 @@ namespace rad {
 
 class PatchMesh;
 
-/// Patches of one surface side in one plane, side by side.
+/// Patches of one surface side in one plane, near each other (not necessarily connected: a
+/// partition standing on a floor may cross a floor's cluster, and then stands too near for it
+/// to shoot).
 struct ShooterCluster {
   std::vector<int> patches;   ///< at least two
   std::vector<int> elements;  ///< the patches' elements
@@ -48,7 +49,7 @@ class ShooterClusters {
   int bisect(std::vector<int> patches, int maxPatches);
   int record(std::vector<int> patches);
 
-  const PatchMesh& mesh_;
+  const PatchMesh& mesh_;  // while building
   std::vector<ShooterCluster> clusters_;
   std::vector<int> above_;  // per patch
 };

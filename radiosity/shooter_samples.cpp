@@ -130,10 +130,11 @@ void addShare(ShooterSample& s, const Part& part) {
   }
 }
 
-/// Per element: its centroid, or none when the counts need no distances.
+/// Per element: its centroid, or none when the counts need no distances (neither patches by
+/// proximity nor clusters).
 std::vector<glm::dvec3> elementCentroids(const PatchMesh& mesh, const SolverOptions& options) {
   std::vector<glm::dvec3> out;
-  if (options.proximitySamples <= 0 || mesh.patches.empty()) return out;
+  if ((options.proximitySamples <= 0 && !options.clusters) || mesh.patches.empty()) return out;
   out.resize(size_t(mesh.elementCount()));
   for (int e = 0; e < mesh.elementCount(); ++e) out[size_t(e)] = mesh.centroid(e);
   return out;
@@ -142,8 +143,8 @@ std::vector<glm::dvec3> elementCentroids(const PatchMesh& mesh, const SolverOpti
 }  // namespace
 
 SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options)
-    : mesh_(mesh), options_(options), centroid_(elementCentroids(mesh, options)), centroids_(centroid_) {
-  normal_.resize(centroid_.size());
+    : mesh_(mesh), options_(options), centroids_(elementCentroids(mesh, options)) {
+  normal_.resize(centroids_.points().size());
   for (size_t e = 0; e < normal_.size(); ++e) normal_[e] = mesh.normal(int(e));
 }
 
@@ -151,7 +152,7 @@ double SampleCounter::nearestFacing(int patch, double reach) const {
   const Patch& p = mesh_.patches[patch];
   return centroids_.nearest(p.centroid, p.centroid, reach, [&](int e) {
     // An element of another plane facing the patch (occlusion ignored).
-    const glm::dvec3 d = centroid_[size_t(e)] - p.centroid;
+    const glm::dvec3 d = centroids_.points()[size_t(e)] - p.centroid;
     if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, normal_[size_t(e)]) >= 0) return HUGE_VAL;
     return glm::length(d);
   });
@@ -176,6 +177,7 @@ int SampleCounter::operator()(int patch) const {
 }
 
 int SampleCounter::operator()(const ShooterCluster& cluster, int most) const {
+  if (centroids_.points().empty()) return most + 1;  // no distances to count by
   const double k = kClusterProximitySamples, D = cluster.diameter;
   const int fewest = options_.shooterSamples;
   // First whether anything lies too near for `most` points, within the small reach that asks:
@@ -189,21 +191,25 @@ int SampleCounter::operator()(const ShooterCluster& cluster, int most) const {
 }
 
 double SampleCounter::nearestFacing(const ShooterCluster& c, double reach) const {
+  std::array<glm::dvec3, 4> corners;
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
-  for (double a : {c.uLo, c.uHi})
-    for (double b : {c.vLo, c.vHi}) {
-      const glm::dvec3 corner = c.origin + a * c.u + b * c.v;
-      lo = glm::min(lo, corner);
-      hi = glm::max(hi, corner);
-    }
+  for (int k = 0; k < 4; ++k) {
+    corners[k] = c.origin + (k & 1 ? c.uHi : c.uLo) * c.u + (k & 2 ? c.vHi : c.vLo) * c.v;
+    lo = glm::min(lo, corners[k]);
+    hi = glm::max(hi, corners[k]);
+  }
   return centroids_.nearest(lo, hi, reach, [&](int e) {
-    // An element in front of the plane, facing the cluster's point nearest to it.
-    const glm::dvec3 d = centroid_[size_t(e)] - c.origin;
+    // An element in front of the plane that faces some point of the cluster's rectangle (a
+    // corner, the rectangle being convex: a wall standing on the plane faces the part of it
+    // before the wall), at its distance from the rectangle.
+    const glm::dvec3& x = centroids_.points()[size_t(e)];
+    const glm::dvec3 d = x - c.origin;
     if (glm::dot(d, c.normal) <= 1e-9 * c.diameter) return HUGE_VAL;
+    bool facing = false;
+    for (const glm::dvec3& corner : corners) facing = facing || glm::dot(x - corner, normal_[size_t(e)]) < 0;
+    if (!facing) return HUGE_VAL;
     const double a = std::clamp(glm::dot(d, c.u), c.uLo, c.uHi), b = std::clamp(glm::dot(d, c.v), c.vLo, c.vHi);
-    const glm::dvec3 toward = centroid_[size_t(e)] - (c.origin + a * c.u + b * c.v);
-    if (glm::dot(toward, normal_[size_t(e)]) >= 0) return HUGE_VAL;
-    return glm::length(toward);
+    return glm::length(x - (c.origin + a * c.u + b * c.v));
   });
 }
 

@@ -14,7 +14,7 @@ struct SolverOptions {
   double timeLimit = 0;      ///< seconds; 0: no limit
   double overshoot = 1;      ///< ω: shoot ω times the unshot power (1: plain shooting)
   int emitterSamples = kDefaultEmitterSamples;  ///< points on an emitting patch
-  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch
+  int shooterSamples = kDefaultShooterSamples;  ///< at least this many on any other patch (or cluster)
   /// More points on patches near other surfaces (sampleCount).
   double proximitySamples = kDefaultProximitySamples;
   /// Memory for keeping each sample's form factors after its first shot, so that a patch
@@ -23,7 +23,7 @@ struct SolverOptions {
   size_t factorCacheBytes = size_t(kDefaultFactorCacheMb * 1024 * 1024);
   /// Let coplanar patches shoot together where that takes fewer hemicubes than shooting them
   /// one by one (radiosity/shooter_clusters.h).
-  bool clusters = true;
+  bool clusters = kDefaultClusterShooters;
 };
 
 }  // namespace rad

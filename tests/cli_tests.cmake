@@ -156,6 +156,10 @@ cli_test(solve.uniform 0 "final gather at" OUT/uniform.ply
          solve ${DATA}/good_small.json -o OUT/uniform.ply --adaptive false --vertex-direct false)
 cli_test(solve.without_gather 0 "converged after [0-9]+ shots" OUT/ungathered.ply
          solve ${DATA}/good_small.json -o OUT/ungathered.ply --final-gather false)
+cli_test(solve.without_clusters 0 "converged after [0-9]+ shots" OUT/unclustered.ply
+         solve ${DATA}/good_small.json -o OUT/unclustered.ply --final-gather false --cluster-shooters false)
+cli_test(usage.cluster_shooters_not_bool 2 "cluster-shooters" OUT/cs.ply
+         solve ${DATA}/good_small.json -o OUT/cs.ply --cluster-shooters maybe)
 cli_test(usage.contrast_range 2 "contrast" OUT/c.ply solve ${DATA}/good_small.json -o OUT/c.ply --contrast 2)
 cli_test(usage.adaptive_not_bool 2 "adaptive" OUT/a.ply solve ${DATA}/good_small.json -o OUT/a.ply --adaptive maybe)
 cli_test(usage.min_edge_negative 2 "min-element-edge" OUT/m.ply

@@ -6,6 +6,7 @@
 
 #include "mesh/scene.h"
 #include "radiosity/settings.h"
+#include "radiosity/solve.h"
 
 namespace rad {
 namespace {
@@ -25,6 +26,21 @@ TEST(SettingsTest, DefaultsFollowTheSceneSize) {
   s = resolveSettings(scene, flags);
   EXPECT_EQ(s.maxElementEdge, 0.2);  // the flag wins over the file
   EXPECT_EQ(s.maxPatchEdge, 0.9);
+}
+
+/// Shooter clusters are on by default; the scene's solver block and the flag turn them off,
+/// and the solver's options follow.
+TEST(SettingsTest, ClusterShootersFromFileAndFlag) {
+  Scene scene = loadScene(kScenes + "cube.json");
+  scene.solver = SolverBlock{};
+  EXPECT_TRUE(resolveSettings(scene, {}).clusterShooters);
+  EXPECT_TRUE(solverOptions(resolveSettings(scene, {}), 10).clusters);
+  scene.solver.clusterShooters = false;
+  EXPECT_FALSE(resolveSettings(scene, {}).clusterShooters);
+  EXPECT_FALSE(solverOptions(resolveSettings(scene, {}), 10).clusters);
+  SolverBlock flags;
+  flags.clusterShooters = true;
+  EXPECT_TRUE(resolveSettings(scene, flags).clusterShooters);  // the flag wins over the file
 }
 
 }  // namespace

@@ -96,6 +96,7 @@ double shownError(const ProgressiveSolver& solver, const PatchMesh& mesh, bool a
 /// theirs if lower) or kMaxShotsPerPatch shots per patch.
 SolverOptions variantOptions(SolverOptions options, const PatchMesh& mesh) {
   options.tolerance = std::min(options.tolerance, kVariantTolerance);
+  options.clusters = false;  // the very factors Jacobi and Gauss-Seidel iterate
   options.maxShots = kMaxShotsPerPatch * long(mesh.patches.size());
   return options;
 }

@@ -98,7 +98,7 @@ void addShootingFlags(CLI::App& app, SolverBlock& flags) {
   addInRange(app, "--emitter-samples", flags.emitterSamples, 1, 65536,
              "Shooting points on each emitting patch (solver.emitter_samples; default 64; 4 as the final gather's start)");
   addInRange(app, "--shooter-samples", flags.shooterSamples, 1, 65536,
-             "Shooting points on each other patch, at least (solver.shooter_samples; default 1)");
+             "Shooting points on each other patch (or cluster of patches), at least (solver.shooter_samples; default 1)");
   addInRange(app, "--proximity-samples", flags.proximitySamples, 0.0, 65536.0,
              "More shooting points near other surfaces: k·(D/d)² for a patch of diameter D "
              "whose nearest facing element lies d away (solver.proximity_samples; default 0.7)");
