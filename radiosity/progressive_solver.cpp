@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/error.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
@@ -10,6 +11,9 @@ namespace {
 
 /// Recompute the running unshot total this often, so its round-off cannot drift.
 constexpr long kResumEvery = 256;
+/// A cluster shoots instead of the patch picked if it sends at least this many times the power
+/// per hemicube the patch would.
+constexpr double kClusterGain = 2;
 
 /// Seconds since `start`.
 double since(std::chrono::steady_clock::time_point start) {
@@ -247,22 +251,31 @@ int ProgressiveSolver::patchCount(int patch) {
 }
 
 int ProgressiveSolver::clusterCount(int cluster, int most) {
-  if (clusterCounts_.empty()) clusterCounts_.assign(size_t(clusters_->size()), -1);
-  int& count = clusterCounts_[size_t(cluster)];
-  if (count < 0) count = counter_((*clusters_)[cluster], most);
+  if (clusterCounts_.empty()) clusterCounts_.assign(size_t(clusters_->size()), 0);
+  // Kept: n > 0 the count, −m "more than m", 0 not counted yet.
+  int& known = clusterCounts_[size_t(cluster)];
+  if (known > 0) return known;
+  if (known < 0 && most <= -known) return most + 1;
+  const int count = counter_((*clusters_)[cluster], most);
+  known = count <= most ? count : -most;
   return count;
 }
 
 int ProgressiveSolver::chooseCluster(int patch) {
   if (!clusters_) return -1;
+  // Power sent per hemicube: the patch alone, and each cluster above it. Most patches of a
+  // scene never shoot before the tolerance is met, so a cluster pays only by sending more
+  // per hemicube than the patch picked would.
+  const double alone = std::abs(luminance(patchUnshot_[size_t(patch)])) / patchCount(patch);
   int best = -1;
-  long mostSaved = 0;
+  double bestRate = kClusterGain * alone;
   for (int c = clusters_->above(patch); c >= 0; c = (*clusters_)[c].parent) {
-    int alone = 0;
-    for (int q : (*clusters_)[c].patches) alone += patchCount(q);
-    // `alone` is the same whenever the cluster is asked: so is the count kept for it.
-    const int together = clusterCount(c, alone / 2);
-    if (2 * together <= alone && alone - together > mostSaved) best = c, mostSaved = long(alone - together);
+    double power = 0;
+    for (int q : (*clusters_)[c].patches) power += std::abs(luminance(patchUnshot_[size_t(q)]));
+    const double most = std::floor(power / bestRate);  // points at which it would still do better
+    if (!(most >= 1)) continue;
+    const int together = clusterCount(c, int(std::min(most, 1e6)));
+    if (together <= most) best = c, bestRate = power / together;
   }
   return best;
 }
@@ -274,6 +287,7 @@ void ProgressiveSolver::shoot(int patch) {
     auto& samples = clusterSamples_[size_t(cluster)];
     const ShooterCluster& c = (*clusters_)[cluster];
     if (samples.empty()) samples = clusterSamples(mesh_, c, clusterCounts_[size_t(cluster)]);
+    RAD_CHECK(!samples.empty());
     shootFrom(int(mesh_.patches.size()) + cluster, Shooter{c.patches.front(), cluster, &c.elements}, samples,
               c.patches);
     ++clusterShots_;

@@ -80,11 +80,11 @@ class ProgressiveSolver {
   bool stepOnce();
   /// Shoots from the patch, or from the cluster above it that chooseCluster picks.
   void shoot(int patch);
-  /// The cluster above the patch whose shot saves the most hemicubes against its patches
-  /// shooting one by one, if it takes at most half of theirs; else -1.
+  /// The cluster above the patch that sends the most unshot power per hemicube, if that is at
+  /// least kClusterGain times what the patch alone would; else -1.
   int chooseCluster(int patch);
-  /// Shooting points of a patch, and of a cluster (most + 1 if more than `most`, the same
-  /// each time it is asked), counted once (SampleCounter).
+  /// Shooting points of a patch, and of a cluster (most + 1 if more than `most`), counted
+  /// once (SampleCounter; a cluster again only if asked with a larger `most` than it was refused at).
   int patchCount(int patch);
   int clusterCount(int cluster, int most);
   /// One shot: every sample of the shooter (its factors in cache slot `slot`) sends its share

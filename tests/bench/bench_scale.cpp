@@ -136,6 +136,9 @@ int main(int argc, char** argv) {
     while (solving.step()) {
     }
     row.print("shooting", rad::StageTimes::since(start));
+    const rad::ProgressiveSolver& shot = solving.solver();
+    std::fprintf(stderr, "bench_scale: %ld shots (%ld by clusters), %ld hemicubes, unshot %.3g\n", shot.shots(),
+                 shot.clusterShots(), shot.hemicubes(), shot.unshotFraction());
     start = Clock::now();
     const rad::Solution solution = solving.bake();
     row.print(solution.gathered ? "final gather" : "baking", rad::StageTimes::since(start));
