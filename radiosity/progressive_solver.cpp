@@ -250,14 +250,10 @@ int ProgressiveSolver::patchCount(int patch) {
   return count;
 }
 
-int ProgressiveSolver::clusterCount(int cluster, int most) {
-  if (clusterCounts_.empty()) clusterCounts_.assign(size_t(clusters_->size()), 0);
-  // Kept: n > 0 the count, −m "more than m", 0 not counted yet.
-  int& known = clusterCounts_[size_t(cluster)];
-  if (known > 0) return known;
-  if (known < 0 && most <= -known) return most + 1;
-  const int count = counter_((*clusters_)[cluster], most);
-  known = count <= most ? count : -most;
+int ProgressiveSolver::clusterCount(int cluster) {
+  if (clusterCounts_.empty()) clusterCounts_.assign(size_t(clusters_->size()), -1);
+  int& count = clusterCounts_[size_t(cluster)];
+  if (count < 0) count = counter_((*clusters_)[cluster]);
   return count;
 }
 
@@ -272,10 +268,10 @@ int ProgressiveSolver::chooseCluster(int patch) {
   for (int c = clusters_->above(patch); c >= 0; c = (*clusters_)[c].parent) {
     double power = 0;
     for (int q : (*clusters_)[c].patches) power += std::abs(luminance(patchUnshot_[size_t(q)]));
-    const double most = std::floor(power / bestRate);  // points at which it would still do better
-    if (!(most >= 1)) continue;
-    const int together = clusterCount(c, int(std::min(most, 1e6)));
-    if (together <= most) best = c, bestRate = power / together;
+    // Cheap first: at more points than this it could not do better.
+    if (!(power >= bestRate)) continue;
+    const int together = clusterCount(c);
+    if (power / together >= bestRate) best = c, bestRate = power / together;
   }
   return best;
 }
@@ -286,7 +282,7 @@ void ProgressiveSolver::shoot(int patch) {
     if (clusterSamples_.empty()) clusterSamples_.resize(size_t(clusters_->size()));
     auto& samples = clusterSamples_[size_t(cluster)];
     const ShooterCluster& c = (*clusters_)[cluster];
-    if (samples.empty()) samples = clusterSamples(mesh_, c, clusterCounts_[size_t(cluster)]);
+    if (samples.empty()) samples = clusterSamples(mesh_, c, clusterCount(cluster));
     RAD_CHECK(!samples.empty());
     shootFrom(int(mesh_.patches.size()) + cluster, Shooter{c.patches.front(), cluster, &c.elements}, samples,
               c.patches);

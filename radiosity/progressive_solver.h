@@ -83,10 +83,9 @@ class ProgressiveSolver {
   /// The cluster above the patch that sends the most unshot power per hemicube, if that is at
   /// least kClusterGain times what the patch alone would; else -1.
   int chooseCluster(int patch);
-  /// Shooting points of a patch, and of a cluster (most + 1 if more than `most`), counted
-  /// once (SampleCounter; a cluster again only if asked with a larger `most` than it was refused at).
+  /// Shooting points of a patch and of a cluster, counted once (SampleCounter).
   int patchCount(int patch);
-  int clusterCount(int cluster, int most);
+  int clusterCount(int cluster);
   /// One shot: every sample of the shooter (its factors in cache slot `slot`) sends its share
   /// of the patches' unshot power.
   void shootFrom(int slot, const Shooter& shooter, const std::vector<ShooterSample>& samples,
@@ -117,7 +116,7 @@ class ProgressiveSolver {
   std::vector<std::vector<ShooterSample>> samples_;  // per patch, once it shoots
   std::unique_ptr<const ShooterClusters> clusters_;  // null: every patch shoots alone
   std::vector<std::vector<ShooterSample>> clusterSamples_;
-  std::vector<int> patchCounts_, clusterCounts_;     // -1: not counted yet
+  std::vector<int> patchCounts_, clusterCounts_;     // -1: not counted yet (sized when first asked)
   std::vector<glm::dvec3> B_, dB_, rho_;
   std::vector<glm::dvec3> direct_, dE_;  // received from emission; emission not yet shot
   std::vector<double> area_;

@@ -176,18 +176,15 @@ int SampleCounter::operator()(int patch) const {
   return proximityCount(p.diameter, nearestFacing(patch, reach));
 }
 
-int SampleCounter::operator()(const ShooterCluster& cluster, int most) const {
-  if (centroids_.points().empty()) return most + 1;  // no distances to count by
+int SampleCounter::operator()(const ShooterCluster& cluster) const {
+  if (centroids_.points().empty()) return kMaxClusterPoints;  // no distances to count by
   const double k = kClusterProximitySamples, D = cluster.diameter;
   const int fewest = options_.shooterSamples;
-  // First whether anything lies too near for `most` points, within the small reach that asks:
-  // most clusters near other surfaces end there. Then the nearest within the fewest's reach.
-  if (nearestFacing(cluster, D * std::sqrt(k / most)) < HUGE_VAL) return most + 1;
   const double nearest = nearestFacing(cluster, D * std::sqrt(k / fewest));
-  if (!(nearest < HUGE_VAL)) return std::min(fewest, most + 1);
+  if (!(nearest < HUGE_VAL)) return fewest;
   // Not capped at the emitters' count, as a patch's is: a cluster wanting more shoots as patches.
-  const double wanted = std::max<double>(fewest, std::ceil(k * (D / nearest) * (D / nearest) - 1e-9));
-  return wanted > most ? most + 1 : int(wanted);
+  const double wanted = std::ceil(k * (D / nearest) * (D / nearest) - 1e-9);
+  return int(std::clamp<double>(wanted, fewest, kMaxClusterPoints));
 }
 
 double SampleCounter::nearestFacing(const ShooterCluster& c, double reach) const {

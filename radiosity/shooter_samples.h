@@ -23,9 +23,12 @@ struct ShooterSample {
 /// A cluster's shooting points are spaced no wider than 1/√2 of the distance to the nearest
 /// element facing it: k = 2 in k·(D/d)², where a patch has 0.7 (its own size keeps its points
 /// closer). Measured on the Cornell box without the gather, a patch per 55 mm element (3 180
-/// patches): no clusters 9 018 hemicubes and 2.755 % true error; k = 16 / 4 / 2 / 1 / 0.7:
+/// patches): no clusters 9 018 hemicubes and 2.755 % true error; with a cluster shooting
+/// whenever it took at most half its patches' hemicubes, k = 16 / 4 / 2 / 1 / 0.7:
 /// 9 009 / 8 236 / 6 912 / 6 567 / 6 406 hemicubes, 2.754 / 2.757 / 2.767 / 2.769 / 2.79 %.
 constexpr double kClusterProximitySamples = 2;
+/// A cluster counts no more points than this (it then shoots as patches).
+constexpr int kMaxClusterPoints = 1 << 20;
 
 /// How many points a patch shoots from: options.emitterSamples on an emitter; otherwise
 /// options.shooterSamples, raised to proximitySamples·(D/d)² (at most emitterSamples), D the
@@ -38,9 +41,8 @@ class SampleCounter {
   SampleCounter(const PatchMesh& mesh, const SolverOptions& options);
   int operator()(int patch) const;
   /// A cluster's points: k·(D/d)² with k = kClusterProximitySamples and d measured from the
-  /// cluster's nearest point (not its centroid), at least the fewest; most + 1 when that is
-  /// more than `most`.
-  int operator()(const ShooterCluster& cluster, int most) const;
+  /// cluster's nearest point (not its centroid), at least the fewest, at most kMaxClusterPoints.
+  int operator()(const ShooterCluster& cluster) const;
 
  private:
   /// The distance from the patch's centroid to the nearest element facing it, if under
