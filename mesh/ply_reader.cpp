@@ -227,8 +227,7 @@ Header parseHeader(const std::string& bytes, const std::string& path) {
 /// Reads the scalars of the body in order, in the file's format.
 class BodyReader {
  public:
-  BodyReader(const std::string& bytes, const Header& h, const std::string& path)
-      : bytes_(bytes), at_(h.body), format_(h.format), path_(path) {}
+  BodyReader(const std::string& bytes, const Header& h) : bytes_(bytes), at_(h.body), format_(h.format) {}
 
   /// The next scalar of type t; `where` names it for messages.
   double scalar(const std::string& t, const std::string& where) {
@@ -298,7 +297,6 @@ class BodyReader {
   const std::string& bytes_;
   size_t at_;
   Format format_;
-  const std::string& path_;
 };
 
 /// Whether p is the face element's list of vertex indices.
@@ -403,7 +401,7 @@ PlyPolygons readBody(const std::string& bytes, const Header& h, const std::strin
   PlyPolygons out;
   out.mesh.comments = h.comments;
   const uint64_t vertices = vertexCount(h);
-  BodyReader body(bytes, h, path);
+  BodyReader body(bytes, h);
   for (const auto& e : h.elements) readElement(body, e, vertices, path, out);
   return out;
 }

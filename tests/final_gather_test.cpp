@@ -136,7 +136,8 @@ TEST(FinalGatherTest, HemicubesRenderedAheadGiveTheSameLight) {
 /// surface, which reproduces a linear field exactly (barycentric weights in its base element).
 TEST(FinalGatherTest, RefinedVerticesInterpolateTheBaseVertices) {
   Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
-  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  const Settings settings = resolveSettings(scene, {});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
   ASSERT_TRUE(meshed.base);
   const PatchMesh& mesh = meshed.mesh;
   const GatherPoints g = gatherPoints(mesh, meshed.base.get(), vertexReflectance(mesh));
@@ -202,7 +203,8 @@ TEST(FinalGatherTest, LeftOutWithAWarningBeyondItsBudget) {
 /// the gather is cheap and runs.
 TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
   Scene scene = loadSceneToSolve(test::kData + "fine_box.json");
-  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  const Settings settings = resolveSettings(scene, {});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
   EXPECT_TRUE(meshed.gather);
   const double vertices = double(meshed.mesh.mesh.n_vertices());
   EXPECT_GT(vertices, 40000);
@@ -249,7 +251,8 @@ TEST(FinalGatherTest, TimeLimitSpentByMeshingStillGivesAViewableResult) {
   flags.timeLimit = 1e-6;
   Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
   std::vector<std::string> warnings;
-  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, flags),
+  const Settings settings = resolveSettings(scene, flags);
+  const MeshedScene meshed = meshScene(std::move(scene), settings,
                                        {true, [&](const std::string& w) { warnings.push_back(w); }});
   EXPECT_FALSE(meshed.gather);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),

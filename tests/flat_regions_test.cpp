@@ -138,7 +138,8 @@ TEST(FlatRegionsTest, NothingEscapesAClosedCube) {
 
 TEST(FlatRegionsTest, CornellBoxOriginalAsTheGatherDrawsIt) {
   Scene scene = loadSceneToSolve(test::kScenes + "cornell_original.json");
-  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  const Settings settings = resolveSettings(scene, {});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
   const PatchMesh& base = meshed.base ? *meshed.base : meshed.mesh;
   const Compared c = compare(base, meshed.scene.diagonal(), kDefaultGatherResolution, 17, HemicubeCulling::None);
   EXPECT_GT(c.points, 400);

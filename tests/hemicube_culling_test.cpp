@@ -175,8 +175,8 @@ void expectSameFactors(const FormFactors& culled, const FormFactors& all, const 
 /// A unit vector uniform on the sphere.
 glm::dvec3 randomDirection(std::mt19937& rng) {
   std::normal_distribution<double> normal;
-  glm::dvec3 d(normal(rng), normal(rng), normal(rng));
-  return glm::normalize(d);
+  const double z = normal(rng), y = normal(rng), x = normal(rng);  // one draw each, in a fixed order
+  return glm::normalize(glm::dvec3(x, y, z));
 }
 
 /// Triangles drawn over a series of hemicubes.
@@ -210,8 +210,11 @@ std::vector<std::pair<glm::dvec3, glm::dvec3>> randomViews(const glm::dvec3& lo,
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<std::pair<glm::dvec3, glm::dvec3>> views;
-  for (int k = 0; k < count; ++k)
-    views.emplace_back(lo + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (hi - lo), randomDirection(rng));
+  for (int k = 0; k < count; ++k) {
+    const glm::dvec3 direction = randomDirection(rng);  // one draw each, in a fixed order
+    const double z = unit(rng), y = unit(rng), x = unit(rng);
+    views.emplace_back(lo + glm::dvec3(x, y, z) * (hi - lo), direction);
+  }
   return views;
 }
 

@@ -137,7 +137,8 @@ TEST(MeshFileTest, CornellBoxOriginalMeshesCleanly) {
 /// some 440 seams — faces on edges shared by more than two get their own corners.)
 TEST(MeshFileTest, CornellBoxWaterMeshesWithoutACascade) {
   Scene scene = loadSceneToSolve(test::kData + "mcguire/cornell_water.json");
-  const MeshedScene meshed = meshScene(std::move(scene), resolveSettings(scene, {}));
+  const Settings settings = resolveSettings(scene, {});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
   EXPECT_GT(meshed.mesh.elementCount(), 10000);
   EXPECT_LE(meshed.adaptive.elementsBefore, kWaterMaxElements);
   EXPECT_LE(meshed.mesh.stats.rounds, kWaterAgreementRounds);

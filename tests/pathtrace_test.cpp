@@ -163,7 +163,8 @@ TEST(ReferenceTest, GeneralisedFurnaceMean) {
     double u = rng.next() * total;
     size_t t = 0;
     while (t + 1 < tris.size() && u > tris[t].area) u -= tris[t++].area;
-    const double b = tracer.tracePath(traced.pointOn(int(t), rng.next(), rng.next()), tris[t].normal, tris[t].surface, rng).x;
+    const double v = rng.next(), w = rng.next();  // one draw each, in a fixed order
+    const double b = tracer.tracePath(traced.pointOn(int(t), w, v), tris[t].normal, tris[t].surface, rng).x;
     sum += b, sumSq += b * b;
   }
   const double mean = sum / n, se = std::sqrt((sumSq / n - mean * mean) / (n - 1));

@@ -129,7 +129,10 @@ bool PathTracer::bounce(glm::dvec3& x, glm::dvec3& nx, glm::dvec3& T, Random& rn
   // weighted bounce lands on an emitter. Either alone has unbounded variance somewhere: the
   // first beside an emitter's edge (1/r²), the second for small bright emitters.
   if (scene_.emits()) addLightSample(x, nx, T, rng, B);
-  const glm::dvec3 w = cosineDirection(nx, rng.next(), rng.next());
+  // One draw per statement: a call's arguments are evaluated in an unspecified order, and the
+  // stream must give the same paths whatever the compiler (this is the order GCC took).
+  const double v = rng.next(), u = rng.next();
+  const glm::dvec3 w = cosineDirection(nx, u, v);
   const TraceHit hit = scene_.intersect(x + kRayOffset * nx, w, HUGE_VAL);
   if (hit.triangle < 0) return false;  // escaped
   if (!scene_.reflects(hit)) return false;  // the back of a one-sided surface absorbs

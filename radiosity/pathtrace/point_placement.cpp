@@ -198,7 +198,8 @@ void placeByArea(const TraceScene& scene, int count, Random& rng, std::vector<Su
     for (int attempt = 0; attempt < kTries; ++attempt) {
       const AreaEntry& e = table.entries[pick(table.cdf, stratified(i, count, attempt, rng) * table.total)];
       const TraceTriangle& t = scene.triangle(e.triangle);
-      const glm::dvec3 q = scene.pointOn(e.triangle, rng.next(), rng.next());
+      const double v = rng.next(), u = rng.next();  // one draw each, in a fixed order
+      const glm::dvec3 q = scene.pointOn(e.triangle, u, v);
       if (accept(scene, q, e.sign * t.normal, t.surface, rng, out, "area")) break;
     }
 }

@@ -12,6 +12,13 @@
 
 namespace {
 
+/// Three draws of `u`, z first (one per statement: a call's arguments are evaluated in an
+/// unspecified order, and a benchmark's scene must be the same whatever the compiler).
+glm::vec3 randomVec3(std::uniform_real_distribution<float>& u, std::mt19937& rng) {
+  const float z = u(rng), y = u(rng), x = u(rng);
+  return {x, y, z};
+}
+
 // `count` small random triangles (edges ~size) inside the box [-1, 1]^3.
 void randomScene(size_t count, float size, uint32_t seed, std::vector<glm::vec3>& pos,
                  std::vector<uint32_t>& idx) {
@@ -20,10 +27,10 @@ void randomScene(size_t count, float size, uint32_t seed, std::vector<glm::vec3>
   pos.clear();
   idx.clear();
   for (size_t t = 0; t < count; ++t) {
-    const glm::vec3 c(u(rng), u(rng), u(rng));
+    const glm::vec3 c = randomVec3(u, rng);
     for (int k = 0; k < 3; ++k) {
       idx.push_back(uint32_t(pos.size()));
-      pos.push_back(c + size * glm::vec3(u(rng), u(rng), u(rng)));
+      pos.push_back(c + size * randomVec3(u, rng));
     }
   }
 }
@@ -127,10 +134,10 @@ Room makeRoom(size_t targetTriangles) {
   }
   // Clutter: small random triangles filling the rest of the budget.
   while (r.idx.size() / 3 < targetTriangles) {
-    const glm::vec3 c = lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
+    const glm::vec3 c = lo + (hi - lo) * randomVec3(u, rng);
     for (int k = 0; k < 3; ++k) {
       r.idx.push_back(uint32_t(r.pos.size()));
-      r.pos.push_back(c + 0.15f * (glm::vec3(u(rng), u(rng), u(rng)) - 0.5f));
+      r.pos.push_back(c + 0.15f * (randomVec3(u, rng) - 0.5f));
     }
   }
   return r;
