@@ -48,6 +48,7 @@ void readSolverNumbers(const Node& n, SolverBlock& b) {
   optionalBool(n, "vertex_direct", b.vertexDirect);
   optionalBool(n, "final_gather", b.finalGather);
   optionalBool(n, "cluster_shooters", b.clusterShooters);
+  optionalBool(n, "resolution_follows_power", b.resolutionFollowsPower);
   optionalNumber(n, "min_element_edge", 1e-300, HUGE_VAL, "(0, inf)", b.minElementEdge);
   optionalNumber(n, "contrast", 1e-6, 1, "[1e-6, 1]", b.contrast);
   optionalNumber(n, "proximity_samples", 0, 65536, "[0, 65536]", b.proximitySamples);
@@ -74,7 +75,8 @@ void readSolver(const Node& n, SolverBlock& b) {
                   "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                   "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts",
                   "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements",
-                  "final_gather", "gather_resolution", "cluster_shooters"});
+                  "final_gather", "gather_resolution", "cluster_shooters",
+                  "resolution_follows_power"});
   readSolverNumbers(n, b);
   readSolverCounts(n, b);
 }

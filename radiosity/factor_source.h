@@ -1,6 +1,7 @@
 #pragma once
 // Where the form factors of a shot come from: hemicubes in the solver, exact injected
 // factors in tests.
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct Shooter {
   int cluster = -1;  ///< the cluster, or -1: the patch alone
   /// A cluster's elements, which its hemicubes leave out as a patch's leave out its own.
   const std::vector<int>* elements = nullptr;
+  /// Pixels across the top face of this shot's hemicubes (0: the source's own choice).
+  int resolution = 0;
 };
 
 /// The factors from one shooter sample to every element. Calls with different `worker`
@@ -47,11 +50,17 @@ class HemicubeFactors : public FactorSource {
   int workers() const override { return int(hemicubes_.size()); }
 
  private:
+  std::unique_ptr<Hemicube> hemicube(int resolution) const;
+
   const PatchMesh& mesh_;
+  double sceneSize_;
+  int resolution_;
   HemicubeGeometry geometry_;
   std::unique_ptr<FlatRegions> regions_;                      // if drawn
   std::vector<std::unique_ptr<Hemicube>> hemicubes_;         // one per worker
   std::vector<std::unique_ptr<Hemicube>> emitterHemicubes_;  // one per worker, if finer
+  /// Per worker, hemicubes at the other resolutions shots asked for, made when first asked.
+  std::vector<std::map<int, std::unique_ptr<Hemicube>>> otherHemicubes_;
   std::vector<bool> emits_;                                   // per patch
   unsigned seed_;
 };

@@ -52,6 +52,13 @@ bool isGrey(const PatchMesh& mesh) {
   return true;
 }
 
+int followingResolution(int R, double share) {
+  const int least = std::max(std::min(R, kLeastFollowingResolution), R / 2);
+  // ∛share ≥ 2^(-1/4): R; ≥ 2^(-3/4): R/√2; below: R/2 (midpoints in log).
+  const int wanted = share >= 0.5946 ? R : share >= 0.2102 ? 2 * int(std::lround(R / (2 * std::sqrt(2.0)))) : R / 2;
+  return std::max(wanted, least);
+}
+
 ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,
                                      const SolverOptions& options)
     : mesh_(mesh), factors_(factors), options_(options), counter_(mesh, options),
@@ -293,12 +300,22 @@ void ProgressiveSolver::shoot(int patch) {
   shootFrom(patch, Shooter{patch}, samples_[patch], {patch});
 }
 
-void ProgressiveSolver::shootFrom(int slot, const Shooter& shooter, const std::vector<ShooterSample>& samples,
+int ProgressiveSolver::shotResolution(const Shooter& shooter, const std::vector<int>& patches) {
+  if (options_.followingResolution <= 0 || (shooter.cluster < 0 && mesh_.emits(shooter.patch))) return 0;
+  double power = 0;
+  for (int p : patches) power += std::abs(luminance(patchUnshot_[size_t(p)]));
+  strongestShot_ = std::max(strongestShot_, power);
+  return followingResolution(options_.followingResolution, strongestShot_ > 0 ? power / strongestShot_ : 1);
+}
+
+void ProgressiveSolver::shootFrom(int slot, Shooter shooter, const std::vector<ShooterSample>& samples,
                                   const std::vector<int>& patches) {
   // The power each element sends (ω times its unshot power) is fixed before any sample
   // shoots; the emission part of it travels the same way and is also kept apart.
   std::vector<glm::dvec3> powers, emitted;
   samplePowers(samples, powers, emitted);
+  shooter.resolution = shotResolution(shooter, patches);
+  coarserShots_ += shooter.resolution > 0 && shooter.resolution < options_.followingResolution;
   cache_.compute(factors_, slot, shooter, samples, powers);
   deliverSamples(slot, powers, emitted);
   // Keep the new rows while the budget allows; otherwise let them go.

@@ -40,6 +40,8 @@ class ProgressiveSolver {
   long shots() const { return shots_; }
   /// Shots in which a cluster of patches shot together.
   long clusterShots() const { return clusterShots_; }
+  /// Shots drawn coarser than the finest resolution (options.followingResolution).
+  long coarserShots() const { return coarserShots_; }
   /// Seconds spent in the constructor and in step(), the solver's own time: what the caller
   /// does between steps (measuring, printing) is not counted, nor by the time limit.
   double seconds() const;
@@ -88,8 +90,10 @@ class ProgressiveSolver {
   int clusterCount(int cluster);
   /// One shot: every sample of the shooter (its factors in cache slot `slot`) sends its share
   /// of the patches' unshot power.
-  void shootFrom(int slot, const Shooter& shooter, const std::vector<ShooterSample>& samples,
+  void shootFrom(int slot, Shooter shooter, const std::vector<ShooterSample>& samples,
                  const std::vector<int>& patches);
+  /// The resolution of a shot of these patches (Shooter::resolution; options.followingResolution).
+  int shotResolution(const Shooter& shooter, const std::vector<int>& patches);
   /// The power each sample sends (ω times its elements' unshot power), and the emission part
   /// of it.
   void samplePowers(const std::vector<ShooterSample>& samples, std::vector<glm::dvec3>& powers,
@@ -124,10 +128,11 @@ class ProgressiveSolver {
   std::vector<glm::dvec3> patchUnshot_;  // Σ A ΔB over the patch's elements
   std::vector<int> shotsOf_;             // per patch
   double unshotLuminance_ = 0, emittedLuminance_ = 0, powerShot_ = 0;
+  double strongestShot_ = 0;  // the most unshot power a non-emitting shot sent so far (luminance)
   glm::dvec3 rhoMean_{0.0};
   double totalArea_ = 0;
   EnergyLedger ledger_;
-  long shots_ = 0, clusterShots_ = 0;
+  long shots_ = 0, clusterShots_ = 0, coarserShots_ = 0;
   Stop stop_ = Stop::None;
   std::chrono::steady_clock::time_point start_;
   double elapsed_ = 0;  // seconds spent constructing and in step(): not the caller's time between

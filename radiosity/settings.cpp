@@ -69,6 +69,7 @@ void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& fl
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);
   s.proximitySamples = pick(flags.proximitySamples, file.proximitySamples, kDefaultProximitySamples);
   s.clusterShooters = pick(flags.clusterShooters, file.clusterShooters, kDefaultClusterShooters);
+  s.resolutionFollowsPower = pick(flags.resolutionFollowsPower, file.resolutionFollowsPower, kDefaultResolutionFollowsPower);
   s.factorCacheMb = pick(flags.factorCacheMb, file.factorCacheMb, kDefaultFactorCacheMb);
 }
 

@@ -31,6 +31,10 @@ constexpr int kDefaultEmitterSamples = 64;
 constexpr double kDefaultProximitySamples = 0.7;
 /// Coplanar patches far from other surfaces shoot together (radiosity/shooter_clusters.h).
 constexpr bool kDefaultClusterShooters = true;
+/// A patch first shooting with less unshot power than the strongest shot before it draws
+/// coarser hemicubes, never coarser than this (radiosity/solver_options.h).
+constexpr bool kDefaultResolutionFollowsPower = true;
+constexpr int kLeastFollowingResolution = 64;
 /// With the final gather the progressive solve only starts the vertex system, which the gather
 /// iterates to convergence from any start: its shooting defaults are then a cheap start. On
 /// the Cornell box the gathered true error is the same to 0.01 % (1.70 %, 4.04 % within 50 mm
@@ -98,6 +102,7 @@ struct Settings : Shooting {
   double proximitySamples = kDefaultProximitySamples;  ///< k of k·(D/d)² points near surfaces
   double factorCacheMb = kDefaultFactorCacheMb;  ///< memory for reusing form factors
   bool clusterShooters = kDefaultClusterShooters;  ///< coplanar patches may shoot together
+  bool resolutionFollowsPower = kDefaultResolutionFollowsPower;  ///< dimmer shots, coarser hemicubes
 
   bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
   /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to

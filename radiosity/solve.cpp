@@ -242,6 +242,7 @@ SolverOptions solverOptions(const Settings& settings, size_t patches) {
   options.shooterSamples = settings.shooterSamples;
   options.proximitySamples = settings.proximitySamples;
   options.clusters = settings.clusterShooters;
+  options.followingResolution = settings.resolutionFollowsPower ? settings.hemicubeResolution : 0;
   options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
   return options;
 }

@@ -24,6 +24,17 @@ struct SolverOptions {
   /// Let coplanar patches shoot together where that takes fewer hemicubes than shooting them
   /// one by one (radiosity/shooter_clusters.h).
   bool clusters = kDefaultClusterShooters;
+  /// The factor source's resolution R when shooting resolution follows the unshot power, else
+  /// 0. A patch (or cluster) shooting with a share s of the strongest non-emitting shot's
+  /// power so far draws R·∛s, snapped to R, R/√2 or R/2 and no coarser than
+  /// kLeastFollowingResolution (followingResolution()); emitters keep their own. Only a
+  /// shooter's first shot matters while its factors stay cached.
+  int followingResolution = 0;
 };
+
+/// A shot's hemicube resolution for power share `share` (of the strongest non-emitting shot)
+/// and finest resolution R: ∛share minimises Σ share/R under a budget of Σ R² pixels (a
+/// hemicube's aliasing error ∝ 1/R, its cost ∝ R²), snapped in log to R, R/√2 or R/2, even.
+int followingResolution(int R, double share);
 
 }  // namespace rad

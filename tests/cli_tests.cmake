@@ -160,6 +160,10 @@ cli_test(solve.without_clusters 0 "converged after [0-9]+ shots" OUT/unclustered
          solve ${DATA}/good_small.json -o OUT/unclustered.ply --final-gather false --cluster-shooters false)
 cli_test(usage.cluster_shooters_not_bool 2 "cluster-shooters" OUT/cs.ply
          solve ${DATA}/good_small.json -o OUT/cs.ply --cluster-shooters maybe)
+cli_test(solve.every_shot_at_one_resolution 0 "converged after [0-9]+ shots" OUT/one_resolution.ply
+         solve ${DATA}/good_small.json -o OUT/one_resolution.ply --final-gather false --resolution-follows-power false)
+cli_test(usage.resolution_follows_power_not_bool 2 "resolution-follows-power" OUT/rfp.ply
+         solve ${DATA}/good_small.json -o OUT/rfp.ply --resolution-follows-power often)
 cli_test(usage.contrast_range 2 "contrast" OUT/c.ply solve ${DATA}/good_small.json -o OUT/c.ply --contrast 2)
 cli_test(usage.adaptive_not_bool 2 "adaptive" OUT/a.ply solve ${DATA}/good_small.json -o OUT/a.ply --adaptive maybe)
 cli_test(usage.min_edge_negative 2 "min-element-edge" OUT/m.ply

@@ -43,5 +43,21 @@ TEST(SettingsTest, ClusterShootersFromFileAndFlag) {
   EXPECT_TRUE(resolveSettings(scene, flags).clusterShooters);  // the flag wins over the file
 }
 
+/// Shooting resolution follows the unshot power by default, from the finest shooting resolution
+/// down (without the gather: 128; the gather's start shoots at 64, which it never goes below);
+/// the scene's solver block and the flag turn it off.
+TEST(SettingsTest, ResolutionFollowsPowerFromFileAndFlag) {
+  Scene scene = loadScene(kScenes + "cube.json");
+  scene.solver = SolverBlock{};
+  scene.solver.finalGather = false;
+  EXPECT_TRUE(resolveSettings(scene, {}).resolutionFollowsPower);
+  EXPECT_EQ(solverOptions(resolveSettings(scene, {}), 10).followingResolution, kDefaultHemicubeResolution);
+  scene.solver.resolutionFollowsPower = false;
+  EXPECT_EQ(solverOptions(resolveSettings(scene, {}), 10).followingResolution, 0);
+  SolverBlock flags;
+  flags.resolutionFollowsPower = true;
+  EXPECT_TRUE(resolveSettings(scene, flags).resolutionFollowsPower);  // the flag wins over the file
+}
+
 }  // namespace
 }  // namespace rad

@@ -97,6 +97,7 @@ double shownError(const ProgressiveSolver& solver, const PatchMesh& mesh, bool a
 SolverOptions variantOptions(SolverOptions options, const PatchMesh& mesh) {
   options.tolerance = std::min(options.tolerance, kVariantTolerance);
   options.clusters = false;  // the very factors Jacobi and Gauss-Seidel iterate
+  options.followingResolution = 0;
   options.maxShots = kMaxShotsPerPatch * long(mesh.patches.size());
   return options;
 }

@@ -105,6 +105,10 @@ void addShootingFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--cluster-shooters", flags.clusterShooters,
                  "Let patches of one plane far from other surfaces shoot together from fewer points, "
                  "true or false (solver.cluster_shooters; default true)");
+  app.add_option("--resolution-follows-power", flags.resolutionFollowsPower,
+                 "Let a patch that first shoots with less unshot power than the strongest shot draw coarser "
+                 "hemicubes, down to half the resolution and no coarser than 64, true or false "
+                 "(solver.resolution_follows_power; default true)");
   addInRange(app, "--factor-cache-mb", flags.factorCacheMb, 0.0, 1e9,
              "Memory for reusing a patch's form factors when it shoots again, MiB "
              "(solver.factor_cache_mb; default 256; 0: recompute)");

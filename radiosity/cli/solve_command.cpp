@@ -165,9 +165,10 @@ void runSolve(const SolveOptions& o) {
   if (!o.report.empty()) checkOutputPath(o.report);
   std::vector<ReferencePoint> referencePoints = readReference(o.reference);
   StageTimes stages;
-  // Converging to the direct solution of the patches' own factors, every patch shoots alone.
+  // Converging to the direct solution of the patches' own factors, every patch shoots alone,
+  // every shot at the one resolution.
   SolverBlock flags = o.flags;
-  if (o.fixedPoint == "direct") flags.clusterShooters = false;
+  if (o.fixedPoint == "direct") flags.clusterShooters = flags.resolutionFollowsPower = false;
   const MeshedScene scene = loadAndMesh(o.scene, loadSceneToSolve, flags, true, stages);
   auto start = StageTimes::Clock::now();
   const Measures measures = measuresFor(o, scene, std::move(referencePoints));

@@ -17,6 +17,7 @@ void addShootingSettings(Json& s, const Settings& settings) {
   s["shooter_samples"] = settings.shooterSamples;
   s["proximity_samples"] = settings.proximitySamples;
   s["cluster_shooters"] = settings.clusterShooters;
+  s["resolution_follows_power"] = settings.resolutionFollowsPower;
   s["factor_cache_mb"] = settings.factorCacheMb;
 }
 
@@ -143,6 +144,7 @@ Json perSurfaceTable(const ErrorSummary& e) {
 void addRunFields(Json& report, const ProgressiveSolver& solver) {
   report["shots"] = solver.shots();
   report["cluster_shots"] = solver.clusterShots();
+  report["coarser_shots"] = solver.coarserShots();
   report["hemicubes"] = solver.hemicubes();
   report["factor_cache_bytes"] = solver.cachedBytes();
   report["seconds"] = solver.seconds();

@@ -1,0 +1,110 @@
+// Shooting resolution that follows the unshot power (SolverOptions::followingResolution): a
+// dimmer first shot draws coarser hemicubes, losing no light and little accuracy for less time.
+#include <map>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mesh/color.h"
+#include "mesh/patch_mesh.h"
+#include "radiosity/factor_source.h"
+#include "radiosity/progressive_solver.h"
+#include "tests/solve_support.h"
+
+namespace rad {
+namespace {
+
+using test::kScenes;
+
+/// R·∛share snapped in log to R, R/√2 or R/2 (even), never below 64 nor below half of R.
+TEST(FollowingResolutionTest, CubeRootOfTheShareSnappedToThreeLevels) {
+  EXPECT_EQ(followingResolution(128, 1.0), 128);
+  EXPECT_EQ(followingResolution(128, 0.6), 128);   // ∛0.6 = 0.84 ≥ 2^(-1/4)
+  EXPECT_EQ(followingResolution(128, 0.5), 90);    // ∛0.5 = 0.79: R/√2 = 90.5, even
+  EXPECT_EQ(followingResolution(128, 0.22), 90);
+  EXPECT_EQ(followingResolution(128, 0.2), 64);    // ∛0.2 = 0.58 < 2^(-3/4)
+  EXPECT_EQ(followingResolution(128, 1e-9), 64);
+  EXPECT_EQ(followingResolution(256, 1e-9), 128);  // never below half
+  EXPECT_EQ(followingResolution(96, 1e-9), 64);    // nor below 64
+  EXPECT_EQ(followingResolution(64, 1e-9), 64);    // the gather's start: every shot at 64
+  EXPECT_EQ(followingResolution(32, 1e-9), 32);
+}
+
+/// Hemicube factors that note the resolution each shot asked for.
+class NotedFactors : public FactorSource {
+ public:
+  explicit NotedFactors(HemicubeFactors& inner) : inner_(inner) {}
+  void factors(const Shooter& shooter, int index, const ShooterSample& sample, FormFactors& out,
+               int worker) override {
+    if (index == 0) asked.push_back({shooter.patch, shooter.resolution});
+    inner_.factors(shooter, index, sample, out, worker);
+  }
+  int workers() const override { return 1; }
+  std::vector<std::pair<int, int>> asked;  // (patch, resolution) of each shot's first sample
+
+ private:
+  HemicubeFactors& inner_;
+};
+
+/// In a closed box with uniform ρ nothing escapes whatever the resolution: after any number of
+/// shots the power held and still unshot add up to the generalised furnace's (oracles.md §4),
+/// Σ A·B + ρ/(1 − ρ)·Σ A·ΔB = Σ A·E / (1 − ρ). Emitters ask for nothing (they keep their own
+/// resolution), the strongest non-emitting shot asks for the finest, dimmer ones for coarser.
+TEST(FollowingResolutionTest, CoarserShotsLoseNoLightInAClosedBox) {
+  constexpr double rho = 0.5;
+  constexpr int R = 128;
+  Scene scene = loadScene(kScenes + "cube.json");  // the unit cube, only the ceiling emits
+  for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
+  const PatchMesh mesh = buildPatchMesh(scene, {0.2, 0.2});
+  HemicubeFactors hemicubes(mesh, R, scene.diagonal(), 1, 1);
+  NotedFactors factors(hemicubes);
+  SolverOptions options;
+  options.emitterSamples = 1;
+  options.maxShots = 300;
+  options.followingResolution = R;
+  ProgressiveSolver solver(mesh, factors, options);
+  solver.run();
+  ASSERT_GT(solver.coarserShots(), 10);
+  const EnergyLedger& l = solver.ledger();
+  EXPECT_LE(luminance(l.escaped), 1e-9 * luminance(l.emitted));
+  EXPECT_LE(l.residual(), 1e-9);
+  double held = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) held += mesh.area(e) * luminance(solver.radiosity()[e]);
+  EXPECT_NEAR((held + rho / (1 - rho) * luminance(l.unshot)) / (luminance(l.emitted) / (1 - rho)), 1.0, 1e-9);
+
+  std::map<int, int> shots;
+  bool first = true;
+  for (const auto& [patch, resolution] : factors.asked) {
+    if (mesh.emits(patch)) {
+      EXPECT_EQ(resolution, 0) << "patch " << patch;
+      continue;
+    }
+    ++shots[resolution];
+    if (first) EXPECT_EQ(resolution, R) << "the first non-emitting shot is the strongest so far";
+    first = false;
+  }
+  EXPECT_GT(shots[R], 0);
+  EXPECT_GT(shots[90] + shots[64], 0);
+}
+
+/// The solve command without the final gather (where shooting is the answer) on the Cornell
+/// box against its path-traced reference, at its defaults: most shots draw at 64 instead of
+/// 128. Measured: 4.636 % against 4.553 % true error, for 24 % less solve time (1.17 against
+/// 1.53 s), and at every time limit we tried the lower error (0.9 s: 6.1 % against 10.8 %;
+/// 1.2 s: 4.64 % against 4.75 %).
+constexpr double kFollowingErrorSlack = 0.0015;
+
+TEST(FollowingResolutionTest, CornellBoxWithoutTheGatherKeepsItsTrueError) {
+  SolverBlock flags;
+  flags.finalGather = false;
+  const auto following = test::solveLikeCli(kScenes + "cornell.json", flags);
+  flags.resolutionFollowsPower = false;
+  const auto plain = test::solveLikeCli(kScenes + "cornell.json", flags);
+  EXPECT_GT(following->solver().coarserShots(), following->solver().shots() / 2);
+  EXPECT_EQ(plain->solver().coarserShots(), 0);
+  const std::string reference = test::kDocs + "cornell_reference.csv";
+  EXPECT_LE(test::trueError(*following, reference), test::trueError(*plain, reference) + kFollowingErrorSlack);
+}
+
+}  // namespace
+}  // namespace rad
