@@ -121,7 +121,13 @@ glm::dvec3 ProgressiveSolver::ambient(bool withoutEmission) const {
   glm::dvec3 unshot = ledger_.unshot;
   if (withoutEmission)
     for (size_t e = 0; e < dE_.size(); ++e) unshot -= area_[e] * dE_[e];
-  glm::dvec3 reflectionFactor = 1.0 / (1.0 - rhoMean_);
+  // Of the power shot so far a share f escaped (the open side of a box, the sky); the unshot
+  // power will fare alike: (1 − f) of it arrives, and (1 − f)·ρ̄ of each bounce comes back.
+  // In a closed scene f = 0 and this is Cohen et al.'s 1 / (1 − ρ̄).
+  glm::dvec3 kept(1.0);
+  for (int c = 0; c < 3; ++c)
+    if (sent_[c] > 0) kept[c] = 1 - std::clamp(ledger_.escaped[c] / sent_[c], 0.0, 1.0);
+  const glm::dvec3 reflectionFactor = kept / (1.0 - rhoMean_ * kept);
   return reflectionFactor * unshot / totalArea_;
 }
 
@@ -226,6 +232,7 @@ void ProgressiveSolver::deliverSamples(int slot, const std::vector<glm::dvec3>& 
     // What the hemicube did not deliver escaped (sky, back faces): the ledger closes exactly.
     ledger_.escaped += power - delivered;
     powerShot_ += std::abs(luminance(power));
+    sent_ += power;
   }
 }
 

@@ -57,8 +57,10 @@ class ProgressiveSolver {
   /// The part of B that came straight from the emitters' emission (first bounce), per
   /// element: the display replaces it with direct light computed at the vertices by rays.
   const std::vector<glm::dvec3>& direct() const { return direct_; }
-  /// The ambient term of Cohen et al. 1988: (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄), ρ̄ the area-weighted
-  /// mean reflectance; element i is displayed as Bᵢ + ρᵢ·ambient. withoutEmission: leave out
+  /// The ambient term of Cohen et al. 1988, (Σ Aᵢ ΔBᵢ / Σ Aᵢ) / (1 − ρ̄) with ρ̄ the
+  /// area-weighted mean reflectance, for a scene that loses a share f of what is shot (f: the
+  /// share escaped so far): (Σ Aᵢ ΔBᵢ / Σ Aᵢ)·(1 − f) / (1 − ρ̄(1 − f)); element i is displayed
+  /// as Bᵢ + ρᵢ·ambient. withoutEmission: leave out
   /// the emission not yet shot (when the display takes direct light from rays, which already
   /// show its first bounce).
   glm::dvec3 ambient(bool withoutEmission = false) const;
@@ -128,6 +130,7 @@ class ProgressiveSolver {
   std::vector<glm::dvec3> patchUnshot_;  // Σ A ΔB over the patch's elements
   std::vector<int> shotsOf_;             // per patch
   double unshotLuminance_ = 0, emittedLuminance_ = 0, powerShot_ = 0;
+  glm::dvec3 sent_{0.0};  // power sent by all shots so far, per channel (the ambient's escaping share)
   double strongestShot_ = 0;  // the most unshot power a non-emitting shot sent so far (luminance)
   glm::dvec3 rhoMean_{0.0};
   double totalArea_ = 0;
