@@ -53,10 +53,11 @@ bool isGrey(const PatchMesh& mesh) {
 }
 
 int followingResolution(int R, double share) {
-  const int least = std::max(std::min(R, kLeastFollowingResolution), R / 2);
+  auto even = [](double r) { return 2 * int(std::lround(r / 2)); };  // a hemicube's sides are R × R/2
+  const int least = std::max(std::min(R, kLeastFollowingResolution), even(R / 2.0));
   // ∛share ≥ 2^(-1/4): R; ≥ 2^(-3/4): R/√2; below: R/2 (midpoints in log).
-  const int wanted = share >= 0.5946 ? R : share >= 0.2102 ? 2 * int(std::lround(R / (2 * std::sqrt(2.0)))) : R / 2;
-  return std::max(wanted, least);
+  const int wanted = share >= 0.5946 ? R : share >= 0.2102 ? even(R / std::sqrt(2.0)) : even(R / 2.0);
+  return std::min(R, std::max(wanted, least));
 }
 
 ProgressiveSolver::ProgressiveSolver(const PatchMesh& mesh, FactorSource& factors,
@@ -322,8 +323,9 @@ void ProgressiveSolver::shootFrom(int slot, Shooter shooter, const std::vector<S
   std::vector<glm::dvec3> powers, emitted;
   samplePowers(samples, powers, emitted);
   shooter.resolution = shotResolution(shooter, patches);
-  coarserShots_ += shooter.resolution > 0 && shooter.resolution < options_.followingResolution;
+  const long drawn = cache_.computed();
   cache_.compute(factors_, slot, shooter, samples, powers);
+  coarserShots_ += cache_.computed() > drawn && shooter.resolution > 0 && shooter.resolution < options_.followingResolution;
   deliverSamples(slot, powers, emitted);
   // Keep the new rows while the budget allows; otherwise let them go.
   cache_.keepWithinBudget();

@@ -40,7 +40,8 @@ class ProgressiveSolver {
   long shots() const { return shots_; }
   /// Shots in which a cluster of patches shot together.
   long clusterShots() const { return clusterShots_; }
-  /// Shots drawn coarser than the finest resolution (options.followingResolution).
+  /// Shots that drew hemicubes coarser than the finest resolution (options.followingResolution);
+  /// a shot whose factors all came from the cache draws none.
   long coarserShots() const { return coarserShots_; }
   /// Seconds spent in the constructor and in step(), the solver's own time: what the caller
   /// does between steps (measuring, printing) is not counted, nor by the time limit.

@@ -28,6 +28,14 @@ TEST(FollowingResolutionTest, CubeRootOfTheShareSnappedToThreeLevels) {
   EXPECT_EQ(followingResolution(96, 1e-9), 64);    // nor below 64
   EXPECT_EQ(followingResolution(64, 1e-9), 64);    // the gather's start: every shot at 64
   EXPECT_EQ(followingResolution(32, 1e-9), 32);
+  for (int R = 2; R <= 1024; R += 2)  // every level even, between the floor and R
+    for (double share : {1.0, 0.5, 0.3, 0.1, 0.0}) {
+      const int r = followingResolution(R, share);
+      EXPECT_EQ(r % 2, 0) << R << " " << share;
+      EXPECT_LE(r, R);
+      EXPECT_GE(r, std::min(R, 64));
+    }
+  EXPECT_EQ(followingResolution(130, 1e-9), 66);  // R/2 = 65, made even
 }
 
 /// Hemicube factors that note the resolution each shot asked for.
@@ -100,7 +108,7 @@ TEST(FollowingResolutionTest, CornellBoxWithoutTheGatherKeepsItsTrueError) {
   const auto following = test::solveLikeCli(kScenes + "cornell.json", flags);
   flags.resolutionFollowsPower = false;
   const auto plain = test::solveLikeCli(kScenes + "cornell.json", flags);
-  EXPECT_GT(following->solver().coarserShots(), following->solver().shots() / 2);
+  EXPECT_GT(following->solver().coarserShots(), 0);
   EXPECT_EQ(plain->solver().coarserShots(), 0);
   const std::string reference = test::kDocs + "cornell_reference.csv";
   EXPECT_LE(test::trueError(*following, reference), test::trueError(*plain, reference) + kFollowingErrorSlack);
