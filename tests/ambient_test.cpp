@@ -16,8 +16,7 @@ using test::kScenes;
 /// Nothing escapes a closed box: the ambient term is Cohen et al.'s (Σ A·ΔB / Σ A) / (1 − ρ̄).
 TEST(AmbientTest, ClosedBoxKeepsCohensTerm) {
   constexpr double rho = 0.5;
-  Scene scene = loadScene(kScenes + "cube.json");  // the unit cube, only the ceiling emits
-  for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
+  const Scene scene = test::greyCube(rho);
   const PatchMesh mesh = buildPatchMesh(scene, {0.25, 0.25});
   HemicubeFactors factors(mesh, 64, scene.diagonal(), 1, 1);
   SolverOptions options;

@@ -6,7 +6,11 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "mesh/color.h"
 #include "mesh/reference_points.h"
+#include "radiosity/progressive_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
 #include "tests/support.h"
@@ -53,6 +57,26 @@ inline ErrorSummary trueErrorOf(const Solved& s, const std::string& reference, c
 
 inline double trueError(const Solved& s, const std::string& reference, const std::string& tag = "") {
   return trueErrorOf(s, reference, tag).rms;
+}
+
+/// The unit cube (`scenes/cube.json`: closed, only the ceiling emits), every material's
+/// reflectance rho.
+inline Scene greyCube(double rho) {
+  Scene scene = loadScene(kScenes + "cube.json");
+  for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
+  return scene;
+}
+
+/// In a closed box of uniform reflectance rho nothing escapes, so after any number of shots the
+/// power held and the power still unshot add up to the generalised furnace's (oracles.md §4):
+/// Σ A·B + ρ/(1 − ρ)·Σ A·ΔB = Σ A·E / (1 − ρ), and the ledger closes, all to 1e-9.
+inline void expectClosedBoxFurnace(const PatchMesh& mesh, const ProgressiveSolver& solver, double rho) {
+  const EnergyLedger& l = solver.ledger();
+  EXPECT_LE(luminance(l.escaped), 1e-9 * luminance(l.emitted));
+  EXPECT_LE(l.residual(), 1e-9);
+  double held = 0;
+  for (int e = 0; e < mesh.elementCount(); ++e) held += mesh.area(e) * luminance(solver.radiosity()[e]);
+  EXPECT_NEAR((held + rho / (1 - rho) * luminance(l.unshot)) / (luminance(l.emitted) / (1 - rho)), 1.0, 1e-9);
 }
 
 }  // namespace rad::test
