@@ -100,8 +100,9 @@ class DirectLight {
     /// others only (the shadow's edge crosses the light between them).
     const std::vector<uint64_t>* alsoVisible = nullptr;
     /// Whether to look for a clear sight of each light before casting rays (ClearSight); a
-    /// probe given `visible` never looks (its rays, if any, go where its ends differ, into a
-    /// penumbra, where it seldom pays).
+    /// probe given `visible` looks only where its ends differ in at least kClearSightRays
+    /// samples (an edge across a whole penumbra: its rays would go into the penumbra, where a
+    /// clear sight is seldom found, but past it too).
     bool clearSight = true;
   };
   /// The direct light at each probe, on all workers.

@@ -320,17 +320,8 @@ FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, 
           glm::dot(step, f.normal), glm::dot(step, f.u),     glm::dot(step, f.v)};
 }
 
-uint32_t FlatRegions::locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
-  const Region& r = regions_[size_t(-1 - shows)];
-  // A grazing ray may meet the plane far off the region: no farther than its extent beyond it.
-  const glm::dvec2 margin = r.hi - r.lo, q = glm::clamp(p, r.lo - margin, r.hi + margin);
+uint32_t FlatRegions::search(const Region& r, const glm::dvec2& q, uint32_t& hint) const {
   const float x = float(q.x), y = float(q.y);
-  if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
-    for (int step = 0; step <= kWalk && hint != kNone; ++step) {
-      const uint32_t beyond = outside(hint, x, y);
-      if (!beyond) return slots_[hint].element;
-      hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
-    }
   const int column = std::clamp(int((q.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
   const int row = std::clamp(int((q.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
   const size_t cell = r.firstCell + size_t(row) * size_t(r.columns) + size_t(column);

@@ -17,6 +17,7 @@
 #include <xmmintrin.h>
 #endif
 
+#include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -59,7 +60,26 @@ class FlatRegions {
   /// The element of region r that holds point p of its frame, or the nearest one (a ray
   /// may miss by rounding at the outline). `hint`: where the last search ended (any value to
   /// begin with), walked from first, as neighbouring pixels mostly show one element; updated.
-  uint32_t locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const;
+  uint32_t locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
+    const Region& r = regions_[size_t(-1 - shows)];
+    // A grazing ray may meet the plane far off the region: no farther than its extent beyond it.
+    const glm::dvec2 margin = r.hi - r.lo, q = glm::clamp(p, r.lo - margin, r.hi + margin);
+    const float x = float(q.x), y = float(q.y);
+    if (hint - r.firstSlot < r.slotCount)  // walk from the last pixel's element
+      for (int step = 0; step <= kWalk && hint != kNone; ++step) {
+        const uint32_t beyond = outside(hint, x, y);
+        if (!beyond) {
+          // The next pixel's element is mostly this one or across one of its edges: the
+          // walk's loads are its latency, so those slots are fetched ahead.
+          const Slot& found = slots_[hint];
+          for (uint32_t next : found.across)
+            if (next != kNone) __builtin_prefetch(&slots_[next]);
+          return found.element;
+        }
+        hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
+      }
+    return search(r, q, hint);
+  }
 
  private:
   /// A region drawn by its outline: its plane frame, its elements' corners in that frame and
@@ -100,6 +120,8 @@ class FlatRegions {
     return bits;
 #endif
   }
+  /// locate() by the region's grid, from the cell of point q.
+  uint32_t search(const Region& r, const glm::dvec2& q, uint32_t& hint) const;
   /// Adds the slots of a region's elements (`group`, flat group g; their vertices' frame
   /// coordinates in `at`), each with its neighbours across its edges (slotOf: per element).
   void addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,

@@ -209,7 +209,6 @@ Hemicube::Hemicube(const FlatRegions& regions, int resolution, double sceneSize)
   regions_ = &regions;
   accumulator_.assign(regions.elementCount(), 0.0);
   seen_.resize(regions.elementCount());
-  excludedElement_.assign(regions.elementCount(), 0);
 }
 
 Hemicube::~Hemicube() = default;
@@ -268,10 +267,12 @@ void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation
   frame_ = HemicubeFrame::make(x, n, rotation, eyeOffset_);
   if (++stamp_ == 0) {  // wrapped: forget every old stamp
     std::fill(excluded_.begin(), excluded_.end(), 0u);
-    std::fill(excludedElement_.begin(), excludedElement_.end(), 0u);
     stamp_ = 1;
   }
-  for (int e : excluded) (regions_ ? excludedElement_ : excluded_)[size_t(e)] = stamp_;
+  if (regions_)
+    excludedElements_ = excluded;
+  else
+    for (int e : excluded) excluded_[size_t(e)] = stamp_;
   counts_ = HemicubeCounts();
   for (int f = 0; f < 5; ++f) {
     FaceDraw& draw = draws_[size_t(f)];
@@ -451,14 +452,16 @@ void Hemicube::accumulateLocated(FormFactors& out) {
           below_[size_t(i)] = hint;
           ++counts_.located;
         }
-        if (excludedElement_[e] == stamp_) {
-          back += delta[k];
-          continue;
-        }
         accumulator_[e] += delta[k];
         seen_.insert(e);
       }
     }
+  }
+  // The excluded elements (a shooter's own) receive nothing: what they were given is seen
+  // as from behind.
+  for (int e : excludedElements_) {
+    back += accumulator_[size_t(e)];
+    accumulator_[size_t(e)] = 0;
   }
   out.sky = sky;
   out.backFaces = back;

@@ -195,7 +195,7 @@ class Hemicube {
 
   const HemicubeGeometry& geometry_;
   const FlatRegions* regions_ = nullptr;  // what the drawn triangles stand for, if not themselves
-  std::vector<uint32_t> excludedElement_;  // with regions_: per element, as excluded_
+  std::vector<int> excludedElements_;      // with regions_: the excluded elements
   std::vector<uint32_t> below_;            // with regions_: per column, where its last search ended
   std::shared_ptr<const ElementHierarchy> hierarchy_;
   int resolution_;
