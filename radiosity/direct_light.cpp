@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -196,6 +197,7 @@ DirectLight::DirectLight(const PatchMesh& mesh, double sceneSize, int samplesPer
 
 void DirectLight::addSample(const glm::dvec3& at, const glm::dvec3& normal) {
   onLight_.push_back(at);
+  for (int a = 0; a < 3; ++a) onLightAxes_[size_t(a)].push_back(at[a]);
   points_.push_back(at + normal * (kRayOffset * sceneSize_));
 }
 
@@ -257,51 +259,127 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
          (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
 }
 
+namespace {
+
+/// The 64 bits of `bits` from bit j on (past its end: zeros).
+uint64_t bitsFrom(const std::vector<uint64_t>& bits, size_t j) {
+  const size_t word = j >> 6, shift = j & 63;
+  const uint64_t low = bits[word] >> shift;
+  return shift && word + 1 < bits.size() ? low | bits[word + 1] << (64 - shift) : low;
+}
+
+/// The bits of w as 0/1 chars at out[0, count), count ≤ 64, eight at a time (bit i of a byte
+/// to byte i of a word, little-endian).
+void unpackBits(uint64_t w, char* out, size_t count) {
+  static const std::array<uint64_t, 256> bytes = [] {
+    std::array<uint64_t, 256> t{};
+    for (size_t b = 0; b < 256; ++b)
+      for (size_t i = 0; i < 8; ++i) t[b] |= uint64_t(b >> i & 1) << (8 * i);
+    return t;
+  }();
+  size_t k = 0;
+  for (; k + 8 <= count; k += 8) std::memcpy(out + k, &bytes[(w >> k) & 255], 8);
+  for (; k < count; ++k) out[k] = char(w >> k & 1);
+}
+
+/// Sets bit samples[k] of `bits` where visible[k] (consecutive samples 64 at a time).
+void setBits(const std::vector<int>& samples, const std::vector<char>& visible, std::vector<uint64_t>& bits) {
+  const size_t n = samples.size();
+  if (n == 0) return;
+  if (size_t(samples.back() - samples.front()) + 1 != n) {
+    for (size_t k = 0; k < n; ++k) bits[size_t(samples[k]) >> 6] |= uint64_t(visible[k]) << (size_t(samples[k]) & 63);
+    return;
+  }
+  for (size_t k0 = 0; k0 < n; k0 += 64) {
+    uint64_t w = 0;
+    for (size_t k = k0; k < std::min(n, k0 + 64); ++k) w |= uint64_t(visible[k]) << (k - k0);
+    const size_t j = size_t(samples[k0]), word = j >> 6, shift = j & 63;
+    bits[word] |= w << shift;
+    if (shift && w >> (64 - shift)) bits[word + 1] |= w >> (64 - shift);
+  }
+}
+
+/// samplesVisible's lists, one set per thread.
+struct SampleLists {
+  std::vector<glm::dvec3> to;
+  std::vector<size_t> at, differing;
+  std::vector<char> blocked;
+};
+
+}  // namespace
+
 void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, const std::vector<int>& samples,
                                  std::vector<char>& visible, long& raysCast) const {
-  visible.resize(samples.size());
-  auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j) >> 6] >> (size_t(j) & 63) & 1); };
-  thread_local std::vector<glm::dvec3> to;
-  thread_local std::vector<size_t> at, differing, unchecked;
-  thread_local std::vector<char> blocked;
-  // Casts the rays to samples[at[i]] for i from `first` on; how many found other than
-  // `visible` held.
-  auto cast = [&](size_t first) {
-    to.clear();
-    for (size_t i = first; i < at.size(); ++i) to.push_back(points_[size_t(samples[at[i]])]);
-    rays_impl_->blocked(origin, to, blocked);
-    raysCast += long(to.size());
+  const size_t n = samples.size();
+  visible.resize(n);
+  thread_local SampleLists lists;
+  SampleLists& l = lists;
+  // Casts the rays to samples[k] for k in `which`; how many found other than `visible` held.
+  auto cast = [&](const std::vector<size_t>& which) {
+    l.to.clear();
+    for (size_t k : which) l.to.push_back(points_[size_t(samples[k])]);
+    rays_impl_->blocked(origin, l.to, l.blocked);
+    raysCast += long(l.to.size());
     size_t changed = 0;
-    for (size_t i = first; i < at.size(); ++i) {
-      const char seen = !blocked[i - first];
-      changed += seen != visible[at[i]];
-      visible[at[i]] = seen;
+    for (size_t i = 0; i < which.size(); ++i) {
+      const char seen = !l.blocked[i];
+      changed += seen != visible[which[i]];
+      visible[which[i]] = seen;
     }
     return changed;
   };
-  at.clear();
   if (!probe.visible) {
-    for (size_t k = 0; k < samples.size(); ++k) at.push_back(k);
-    cast(0);
+    l.at.resize(n);
+    for (size_t k = 0; k < n; ++k) l.at[k] = k;
+    cast(l.at);
     return;
   }
-  for (size_t k = 0; k < samples.size(); ++k) visible[k] = bit(*probe.visible, samples[k]);
+  // Consecutive samples (a light wholly above the horizon) are read 64 at a time.
+  const bool run = n > 0 && size_t(samples.back() - samples.front()) + 1 == n;
+  const size_t first = run ? size_t(samples.front()) : 0;
+  auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j) >> 6] >> (size_t(j) & 63) & 1); };
+  if (run)
+    for (size_t k0 = 0; k0 < n; k0 += 64) unpackBits(bitsFrom(*probe.visible, first + k0), &visible[k0], std::min<size_t>(64, n - k0));
+  else
+    for (size_t k = 0; k < n; ++k) visible[k] = bit(*probe.visible, samples[k]);
   if (!probe.alsoVisible) return;
   // Between two ends that see different samples: rays to every kAgreementCheck-th of the
   // samples they agree on, and to those they do not. A sample both ends see may still be
   // hidden from a point between them (past the corner of its shadow); should a checked one
   // be, every sample is tested.
-  size_t agreed = 0;
-  differing.clear(), unchecked.clear();
-  for (size_t k = 0; k < samples.size(); ++k)
-    if (bit(*probe.alsoVisible, samples[k]) != visible[k])
-      differing.push_back(k);
-    else
-      (agreed++ % kAgreementCheck == 0 ? at : unchecked).push_back(k);
-  const bool contradicted = !at.empty() && cast(0) > 0;
-  at.swap(differing);
-  if (contradicted) at.insert(at.end(), unchecked.begin(), unchecked.end());
-  if (!at.empty()) cast(0);
+  l.at.clear(), l.differing.clear();
+  if (run) {
+    size_t agreed = 0;  // before this word
+    for (size_t k0 = 0; k0 < n; k0 += 64) {
+      const uint64_t mask = n - k0 >= 64 ? ~uint64_t(0) : (uint64_t(1) << (n - k0)) - 1;
+      const uint64_t differ = (bitsFrom(*probe.visible, first + k0) ^ bitsFrom(*probe.alsoVisible, first + k0)) & mask;
+      for (uint64_t d = differ; d; d &= d - 1) l.differing.push_back(k0 + size_t(__builtin_ctzll(d)));
+      // The agreed samples of rank check, check + kAgreementCheck, ... in this word.
+      uint64_t agree = ~differ & mask;
+      const size_t count = size_t(__builtin_popcountll(agree));
+      size_t rank = agreed;  // of agree's lowest bit
+      for (size_t check = (agreed + kAgreementCheck - 1) / kAgreementCheck * kAgreementCheck; check < agreed + count;
+           check += kAgreementCheck) {
+        for (; rank < check; ++rank) agree &= agree - 1;
+        l.at.push_back(k0 + size_t(__builtin_ctzll(agree)));
+      }
+      agreed += count;
+    }
+  } else {
+    size_t agreed = 0;
+    for (size_t k = 0; k < n; ++k)
+      if (bit(*probe.alsoVisible, samples[k]) != visible[k])
+        l.differing.push_back(k);
+      else if (agreed++ % kAgreementCheck == 0)
+        l.at.push_back(k);
+  }
+  if (!l.at.empty() && cast(l.at) > 0) {  // contradicted: the unchecked ones they agree on too
+    size_t agreed = 0;
+    for (size_t k = 0; k < n; ++k)
+      if (bit(*probe.alsoVisible, samples[k]) == bit(*probe.visible, samples[k]) && agreed++ % kAgreementCheck)
+        l.differing.push_back(k);
+  }
+  if (!l.differing.empty()) cast(l.differing);
 }
 
 namespace {
@@ -382,14 +460,16 @@ void DirectLight::samplesAbove(const glm::dvec3& p, const glm::dvec3& n, size_t 
   const LightPolygon& light = lights_[t];
   out.F = unoccludedFactor(p, n, t);
   if (!(out.F > 0)) return;
-  const bool whole = whollyAbove(p, n, t);
-  for (int j = light.first; j < light.first + light.count; ++j) {
-    if (!whole) {
+  if (whollyAbove(p, n, t)) {
+    out.above.resize(size_t(light.count));
+    for (int k = 0; k < light.count; ++k) out.above[size_t(k)] = light.first + k;
+  } else {
+    for (int j = light.first; j < light.first + light.count; ++j) {
       const glm::dvec3 d = onLight_[size_t(j)] - p;
       // Below the horizon, or behind the light.
       if (glm::dot(n, d) <= 0 || -glm::dot(light.normal, d) <= 0) continue;
+      out.above.push_back(j);
     }
-    out.above.push_back(j);
   }
   out.visible.assign(out.above.size(), 0);
 }
@@ -400,11 +480,27 @@ double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t
   if (seen == light.visible.size()) return light.share = 1;  // the weighted sum over all, exactly
   if (seen == 0) return light.share = 0;
   if (light.weight.empty()) {
-    const LightPolygon& lamp = lights_[t];
-    for (int j : light.above) {
-      const glm::dvec3 d = onLight_[size_t(j)] - p;
-      const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(lamp.normal, d);
-      light.weight.push_back(cosHere * cosThere / (r2 * r2));
+    const glm::dvec3& ln = lights_[t].normal;
+    const size_t m = light.above.size(), first = size_t(light.above[0]);
+    light.weight.resize(m);
+    double* weight = light.weight.data();
+    // Axis by axis over a run of samples (a light wholly above the horizon), in the order of
+    // glm::dot's terms (the same weights as point by point), so that the loop is vectorised.
+    if (size_t(light.above.back()) - first + 1 == m) {
+      const double *x = onLightAxes_[0].data() + first, *y = onLightAxes_[1].data() + first,
+                   *z = onLightAxes_[2].data() + first;
+      for (size_t k = 0; k < m; ++k) {
+        const double dx = x[k] - p.x, dy = y[k] - p.y, dz = z[k] - p.z;
+        const double r2 = dx * dx + dy * dy + dz * dz, cosHere = n.x * dx + n.y * dy + n.z * dz;
+        const double cosThere = -(ln.x * dx + ln.y * dy + ln.z * dz);
+        weight[k] = cosHere * cosThere / (r2 * r2);
+      }
+    } else {
+      for (size_t k = 0; k < m; ++k) {
+        const glm::dvec3 d = onLight_[size_t(light.above[k])] - p;
+        const double r2 = glm::dot(d, d), cosHere = glm::dot(n, d), cosThere = -glm::dot(ln, d);
+        weight[k] = cosHere * cosThere / (r2 * r2);
+      }
     }
   }
   double sum = 0, all = 0;
@@ -544,8 +640,7 @@ VertexLight DirectLight::compute(const Probe& probe, long& raysCast, long& seenW
   for (size_t t = 0; t < lights_.size(); ++t) {
     SeenLight& light = seen[t];
     if (light.above.empty()) continue;
-    for (size_t k = 0; k < light.above.size(); ++k)
-      out.visible[size_t(light.above[k]) >> 6] |= uint64_t(light.visible[k]) << (size_t(light.above[k]) & 63);
+    setBits(light.above, light.visible, out.visible);
     const glm::dvec3 full = probe.rho * lights_[t].emission * light.F;
     out.radiosity += full * seenShare(p, n, t, light);
     out.weight[t] = float(luminance(full) / double(light.above.size()));  // the mean sample's share

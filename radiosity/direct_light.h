@@ -2,6 +2,7 @@
 // Direct light at the mesh's vertices by rays to fixed sample points on the emitters
 // (Wallace, Elmquist & Haines 1989), so that shadow boundaries do not depend on the hemicube
 // resolution, and the visibility facts adaptive refinement decides by.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
@@ -142,6 +143,7 @@ class DirectLight {
   std::unique_ptr<ClearSight> clearSight_;
   std::vector<LightPolygon> lights_;
   std::vector<glm::dvec3> onLight_;  // sample points
+  std::array<std::vector<double>, 3> onLightAxes_;  // the same, axis by axis (weights, in runs)
   std::vector<glm::dvec3> points_;   // the same, moved off their emitter: where rays end
   std::vector<VertexLight> vertices_;
   double sceneSize_ = 1;
