@@ -227,6 +227,13 @@ void solveSystem(const VertexSystem& A, const Field& b, Field& x, const GatherOp
     v = A.apply(p);
     alpha = safeDivide(rho, dot(rHat, v));
     const Field s = axpy(r, -alpha, v);
+    // Half a step may be enough: s is the residual of x + α·p.
+    if (const double half = relativeResidual(s, bNorm2); half <= options.tolerance) {
+      for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * p[i];
+      stats.residual = half;
+      ++stats.iterations;
+      break;
+    }
     const Field t = A.apply(s);
     omega = safeDivide(dot(t, s), dot(t, t));
     for (size_t i = 0; i < x.size(); ++i) x[i] += alpha * p[i] + omega * s[i];
