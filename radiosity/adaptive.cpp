@@ -206,10 +206,13 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
 namespace {
 
 /// Bisects the marked elements; each new vertex is the midpoint of the edge it split, where
-/// the light is known: that light, by new vertex, moved out of `midpoints`. `changed`: the
-/// elements round the new vertices (every other element is as it was).
+/// the light is known: that light, by new vertex, moved out of `midpoints`; or, for an edge
+/// that had no midpoint probed (made by this round's bisection, or split to keep the mesh
+/// conforming), the ends of that edge, by new vertex, in `between`. `changed`: the elements
+/// round the new vertices (every other element is as it was).
 std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked,
-                                            MidpointLight& midpoints, std::vector<int>& changed) {
+                                            MidpointLight& midpoints, std::vector<int>& changed,
+                                            std::unordered_map<int, std::pair<int, int>>& between) {
   std::vector<EdgeSplit> splits;
   bisectElements(mesh, marked, &splits);
   changed.clear();
@@ -218,9 +221,13 @@ std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<i
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   std::unordered_map<int, VertexLight> known;
+  between.clear();
   for (const auto& s : splits) {
     auto it = midpoints.find(edgeKey(s.from, s.to));
-    if (it == midpoints.end()) continue;
+    if (it == midpoints.end()) {
+      between.emplace(s.vertex, std::make_pair(s.from, s.to));
+      continue;
+    }
     known.emplace(s.vertex, std::move(it->second));
     midpoints.erase(it);
   }
@@ -257,8 +264,9 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
         elementsToRefine(mesh, light, estimate, options, midpoints, round ? &changed : nullptr);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
-    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed);
-    light.update(mesh, &known);
+    std::unordered_map<int, std::pair<int, int>> between;
+    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed, between);
+    light.update(mesh, &known, &between);
     ++stats.rounds;
   }
   stats.elementsAfter = mesh.elementCount();

@@ -48,6 +48,8 @@ constexpr double kMinRayOffset = 1e-6;
 /// coordinates normalised to the scene): the light is not taken to be clear. Below
 /// kMinRayOffset, so that the surface a point lies on stays apart.
 constexpr double kClearSightMargin = 3e-7;
+/// A probe's inwards shorter than this (relative to the scene size) is rounding, no direction.
+constexpr double kNoDirection = 1e-9;
 /// A point between two ends that see different samples tests every this many-th of the
 /// samples they agree on (and every sample, should one of those disagree). Measured (the
 /// Cornell box's edges, tests/direct_light_test.cpp): the worst point as with every 8th, a
@@ -273,9 +275,13 @@ glm::dvec3 offSurface(const DirectLight::Probe& probe, double sceneSize) {
   double offset = kRayOffset * sceneSize;
   if (probe.size > 0)
     offset = std::clamp(kRayOffsetOfElement * probe.size, kMinRayOffset * sceneSize, offset);
-  const double inwards = glm::length(probe.inwards);
+  // Inwards along the surface only; a vertex amid its elements has their centroids all round
+  // it, and what is left of their sum is rounding, no direction (along the normal it would
+  // cancel the offset off the surface: the rays would start in it and see nothing).
+  const glm::dvec3 along = probe.inwards - probe.normal * glm::dot(probe.inwards, probe.normal);
+  const double inwards = glm::length(along);
   return probe.point + probe.normal * offset +
-         (inwards > 0 ? probe.inwards * (offset / inwards) : glm::dvec3(0.0));
+         (inwards > kNoDirection * sceneSize ? along * (offset / inwards) : glm::dvec3(0.0));
 }
 
 namespace {
@@ -688,11 +694,15 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
   return out;
 }
 
-void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known) {
+void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known,
+                         const std::unordered_map<int, std::pair<int, int>>* between) {
   if (!enabled_) return;
   const size_t from = vertices_.size(), to = mesh.mesh.n_vertices();
   if (from >= to) return;
   vertices_.resize(to);
+  std::vector<char> done(to - from, 0);  // per new vertex
+  auto isDone = [&](int v) { return size_t(v) < from || done[size_t(v) - from]; };
+  std::vector<size_t> waiting;  // vertices between two ends, waiting for those
   std::vector<Probe> probes;
   std::vector<size_t> at;
   for (size_t k = from; k < to; ++k) {
@@ -700,14 +710,45 @@ void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLi
       auto it = known->find(int(k));
       if (it != known->end()) {
         vertices_[k] = std::move(it->second);
+        done[k - from] = 1;
         continue;
       }
+    }
+    if (between && between->count(int(k))) {
+      waiting.push_back(k);
+      continue;
     }
     probes.push_back(vertexProbe(mesh, TriMesh::VertexHandle(int(k))));
     at.push_back(k);
   }
-  std::vector<VertexLight> found = lightAt(probes);
-  for (size_t i = 0; i < at.size(); ++i) vertices_[at[i]] = std::move(found[i]);
+  // Rounds: the vertices on their own first, then those whose ends are known by then (an end
+  // may itself be a vertex bisection put between two others).
+  while (true) {
+    if (!probes.empty()) {
+      std::vector<VertexLight> found = lightAt(probes);
+      for (size_t i = 0; i < at.size(); ++i) vertices_[at[i]] = std::move(found[i]), done[at[i] - from] = 1;
+      probes.clear(), at.clear();
+    }
+    if (waiting.empty()) break;
+    std::vector<size_t> still;
+    for (size_t k : waiting) {
+      const auto [a, b] = between->at(int(k));
+      if (!isDone(a) || !isDone(b)) {
+        still.push_back(k);
+        continue;
+      }
+      Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(int(k)));
+      probe.visible = &vertices_[size_t(a)].visible;
+      if (vertices_[size_t(b)].visible != *probe.visible) probe.alsoVisible = &vertices_[size_t(b)].visible;
+      probes.push_back(probe);
+      at.push_back(k);
+    }
+    if (probes.empty()) {  // ends that never come (not vertices bisection made): on their own
+      for (size_t k : still) probes.push_back(vertexProbe(mesh, TriMesh::VertexHandle(int(k)))), at.push_back(k);
+      still.clear();
+    }
+    waiting = std::move(still);
+  }
 }
 
 std::vector<glm::dvec3> DirectLight::radiosity() const {

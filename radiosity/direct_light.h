@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -75,8 +76,11 @@ class DirectLight {
   /// Whether the scene's emitters are few enough for rays (kMaxRayEmitterPatches).
   bool enabled() const { return enabled_; }
   /// Computes the vertices of `mesh` (the same mesh, perhaps refined) not yet computed;
-  /// those in `known` (by vertex index) are taken from there (moved out).
-  void update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known = nullptr);
+  /// those in `known` (by vertex index) are taken from there (moved out); those in `between`
+  /// lie midway between two vertices (the ends of the edge bisection split) and are probed
+  /// given what those see, as a midpoint is (Probe::visible), once their light is known.
+  void update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known = nullptr,
+              const std::unordered_map<int, std::pair<int, int>>* between = nullptr);
   const std::vector<VertexLight>& vertices() const { return vertices_; }
   const std::vector<LightPolygon>& lights() const { return lights_; }
   int samples() const { return samples_; }
