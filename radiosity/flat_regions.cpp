@@ -320,7 +320,7 @@ FlatRegions::RowWalk FlatRegions::rowWalk(int32_t shows, const glm::dvec3& eye, 
           glm::dot(step, f.normal), glm::dot(step, f.u),     glm::dot(step, f.v)};
 }
 
-uint32_t FlatRegions::search(const Region& r, const glm::dvec2& q, uint32_t& hint) const {
+FlatRegions::Located FlatRegions::search(const Region& r, const glm::dvec2& q) const {
   const float x = float(q.x), y = float(q.y);
   const int column = std::clamp(int((q.x - r.lo.x) * r.inverseCell), 0, r.columns - 1);
   const int row = std::clamp(int((q.y - r.lo.y) * r.inverseCell), 0, r.rows - 1);
@@ -333,14 +333,10 @@ uint32_t FlatRegions::search(const Region& r, const glm::dvec2& q, uint32_t& hin
     return d >= 0;
   };
   for (uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k)
-    if (consider(cellSlots_[k])) {
-      hint = cellSlots_[k];
-      return slots_[hint].element;
-    }
+    if (consider(cellSlots_[k])) return {slots_[cellSlots_[k]].element, cellSlots_[k]};
   if (cellStart_[cell] == cellStart_[cell + 1])  // an empty cell (a hole), reached by rounding
     for (uint32_t s = r.firstSlot; s < r.firstSlot + r.slotCount; ++s) consider(s);
-  hint = best;
-  return slots_[best].element;
+  return {slots_[best].element, best};
 }
 
 }  // namespace rad

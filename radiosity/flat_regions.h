@@ -57,10 +57,16 @@ class FlatRegions {
   };
   /// The RowWalk of region r (shows() of one of its triangles) from `eye`.
   RowWalk rowWalk(int32_t shows, const glm::dvec3& eye, const glm::dvec3& d, const glm::dvec3& step) const;
+  /// Where locate() ended: the element, and its slot (the next search's hint).
+  struct Located {
+    uint32_t element, slot;
+  };
   /// The element of region r that holds point p of its frame, or the nearest one (a ray
   /// may miss by rounding at the outline). `hint`: where the last search ended (any value to
-  /// begin with), walked from first, as neighbouring pixels mostly show one element; updated.
-  uint32_t locate(int32_t shows, const glm::dvec2& p, uint32_t& hint) const {
+  /// begin with), walked from first, as neighbouring pixels mostly show one element. (Hint
+  /// and slot go by value: a walk's steps are its latency, and a hint by reference went
+  /// through memory at each.)
+  Located locate(int32_t shows, const glm::dvec2& p, uint32_t hint) const {
     const Region& r = regions_[size_t(-1 - shows)];
     // A grazing ray may meet the plane far off the region: no farther than its extent beyond it.
     const glm::dvec2 margin = r.hi - r.lo, q = glm::clamp(p, r.lo - margin, r.hi + margin);
@@ -74,11 +80,11 @@ class FlatRegions {
           const Slot& found = slots_[hint];
           for (uint32_t next : found.across)
             if (next != kNone) __builtin_prefetch(&slots_[next]);
-          return found.element;
+          return {found.element, hint};
         }
         hint = slots_[hint].across[size_t(__builtin_ctz(beyond))];
       }
-    return search(r, q, hint);
+    return search(r, q);
   }
 
  private:
@@ -121,7 +127,7 @@ class FlatRegions {
 #endif
   }
   /// locate() by the region's grid, from the cell of point q.
-  uint32_t search(const Region& r, const glm::dvec2& q, uint32_t& hint) const;
+  Located search(const Region& r, const glm::dvec2& q) const;
   /// Adds the slots of a region's elements (`group`, flat group g; their vertices' frame
   /// coordinates in `at`), each with its neighbours across its edges (slotOf: per element).
   void addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,

@@ -448,8 +448,9 @@ void Hemicube::accumulateLocated(FormFactors& out) {
             walk = regions_->rowWalk(shows, frame_.eye, rowStart + step * double(i), step);
             hint = below_[size_t(i)];
           }
-          e = regions_->locate(shows, walk.at(i - runStart), hint);
-          below_[size_t(i)] = hint;
+          const FlatRegions::Located found = regions_->locate(shows, walk.at(i - runStart), hint);
+          e = found.element;
+          below_[size_t(i)] = hint = found.slot;
           ++counts_.located;
         }
         accumulator_[e] += delta[k];
