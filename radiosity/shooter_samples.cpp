@@ -142,18 +142,30 @@ std::vector<glm::dvec3> elementCentroids(const PatchMesh& mesh, const SolverOpti
 
 }  // namespace
 
-SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options)
-    : mesh_(mesh), options_(options), centroids_(elementCentroids(mesh, options)) {
-  normal_.resize(centroids_.points().size());
-  for (size_t e = 0; e < normal_.size(); ++e) normal_[e] = mesh.normal(int(e));
+SampleCounter::SampleCounter(const PatchMesh& mesh, const SolverOptions& options) : mesh_(mesh), options_(options) {}
+
+const PointTree& SampleCounter::centroids() const {
+  std::call_once(built_, [this] {
+    centroids_.emplace(elementCentroids(mesh_, options_));
+    normal_.resize(centroids_->points().size());
+    for (size_t e = 0; e < normal_.size(); ++e) normal_[e] = mesh_.normal(int(e));
+  });
+  return *centroids_;
+}
+
+const std::vector<glm::dvec3>& SampleCounter::normals() const {
+  centroids();
+  return normal_;
 }
 
 double SampleCounter::nearestFacing(int patch, double reach) const {
   const Patch& p = mesh_.patches[patch];
-  return centroids_.nearest(p.centroid, p.centroid, reach, [&](int e) {
+  const PointTree& tree = centroids();
+  const std::vector<glm::dvec3>& normal = normals();
+  return tree.nearest(p.centroid, p.centroid, reach, [&](int e) {
     // An element of another plane facing the patch (occlusion ignored).
-    const glm::dvec3 d = centroids_.points()[size_t(e)] - p.centroid;
-    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, normal_[size_t(e)]) >= 0) return HUGE_VAL;
+    const glm::dvec3 d = tree.points()[size_t(e)] - p.centroid;
+    if (glm::dot(d, p.normal) <= 1e-9 * p.diameter || glm::dot(d, normal[size_t(e)]) >= 0) return HUGE_VAL;
     return glm::length(d);
   });
 }
@@ -177,7 +189,7 @@ int SampleCounter::operator()(int patch) const {
 }
 
 int SampleCounter::operator()(const ShooterCluster& cluster) const {
-  if (centroids_.points().empty()) return kMaxClusterPoints;  // no distances to count by
+  if (centroids().points().empty()) return kMaxClusterPoints;  // no distances to count by
   const double k = kClusterProximitySamples, D = cluster.diameter;
   const int fewest = options_.shooterSamples;
   const double nearest = nearestFacing(cluster, D * std::sqrt(k / fewest));
@@ -195,15 +207,17 @@ double SampleCounter::nearestFacing(const ShooterCluster& c, double reach) const
     lo = glm::min(lo, corners[k]);
     hi = glm::max(hi, corners[k]);
   }
-  return centroids_.nearest(lo, hi, reach, [&](int e) {
+  const PointTree& tree = centroids();
+  const std::vector<glm::dvec3>& normal = normals();
+  return tree.nearest(lo, hi, reach, [&](int e) {
     // An element in front of the plane that faces some point of the cluster's rectangle (a
     // corner, the rectangle being convex: a wall standing on the plane faces the part of it
     // before the wall), at its distance from the rectangle.
-    const glm::dvec3& x = centroids_.points()[size_t(e)];
+    const glm::dvec3& x = tree.points()[size_t(e)];
     const glm::dvec3 d = x - c.origin;
     if (glm::dot(d, c.normal) <= 1e-9 * c.diameter) return HUGE_VAL;
     bool facing = false;
-    for (const glm::dvec3& corner : corners) facing = facing || glm::dot(x - corner, normal_[size_t(e)]) < 0;
+    for (const glm::dvec3& corner : corners) facing = facing || glm::dot(x - corner, normal[size_t(e)]) < 0;
     if (!facing) return HUGE_VAL;
     const double a = std::clamp(glm::dot(d, c.u), c.uLo, c.uHi), b = std::clamp(glm::dot(d, c.v), c.vLo, c.vHi);
     return glm::length(x - (c.origin + a * c.u + b * c.v));

@@ -1,6 +1,8 @@
 #pragma once
 // The points a patch shoots from: how many (SampleCounter) and where (patchSamples), each
 // carrying its share of the patch's elements' power.
+#include <mutex>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -54,10 +56,16 @@ class SampleCounter {
   /// A patch's k·(D/d)² points, at least the fewest, at most the emitters' count.
   int proximityCount(double diameter, double nearest) const;
 
+  /// The element centroids (none if no count needs them) and their normals, built on first
+  /// use: a solve whose shots are all from emitters (the gather's start) needs none.
+  const PointTree& centroids() const;
+  const std::vector<glm::dvec3>& normals() const;
+
   const PatchMesh& mesh_;
   SolverOptions options_;
-  PointTree centroids_;            // element centroids (none if no count needs them)
-  std::vector<glm::dvec3> normal_;  // per element, beside them
+  mutable std::once_flag built_;
+  mutable std::optional<PointTree> centroids_;
+  mutable std::vector<glm::dvec3> normal_;  // per element, beside the centroids
 };
 
 /// `count` stratified samples over a patch. Each element is cut into m×m congruent triangles,
