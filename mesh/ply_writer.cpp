@@ -20,11 +20,10 @@ const char* typeName(PlyColumn::Type t) {
 }
 
 /// The body's bytes, gathered and written a megabyte at a time (a stream's write per value
-/// took as long as the rest of the output).
+/// took as long as the rest of the output); flush() writes what is left.
 class BodyWriter {
  public:
   explicit BodyWriter(std::ostream& out) : out_(out) { bytes_.reserve(kChunk + 64); }
-  ~BodyWriter() { flush(); }
   BodyWriter(const BodyWriter&) = delete;
   BodyWriter& operator=(const BodyWriter&) = delete;
 
@@ -96,6 +95,7 @@ void writeBody(std::ostream& stream, const PlyMesh& mesh, size_t nv) {
   BodyWriter out(stream);
   for (size_t i = 0; i < nv; ++i) writeRecord(out, mesh.vertex, i);
   for (size_t f = 0; f < mesh.faces.size(); ++f) writeTriangle(out, mesh, f);
+  out.flush();
 }
 
 /// The vertices: the length of the vertex columns (0 without any).

@@ -112,7 +112,8 @@ DirectLight::Probe midpointProbe(const PatchMesh& mesh, int e, TriMesh::VertexHa
   p.size = 0.5 * (m.point(a) - m.point(b)).norm();
   // A sample both ends see, or neither, the midpoint sees as they do (a thin occluder seen
   // from neither end is the exception this accepts): rays go only to the samples whose
-  // visibility changes along the edge, none where the ends see the same.
+  // visibility changes along the edge, and to every kAgreementCheck-th of those both see;
+  // none where the ends see the same (DirectLight::samplesVisible).
   p.visible = &vertices[size_t(a.idx())].visible;
   if (vertices[size_t(b.idx())].visible != *p.visible) p.alsoVisible = &vertices[size_t(b.idx())].visible;
   return p;

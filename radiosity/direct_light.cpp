@@ -514,7 +514,8 @@ double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t
     light.weight.resize(m);
     double* weight = light.weight.data();
     // Axis by axis over a run of samples (a light wholly above the horizon), in the order of
-    // glm::dot's terms (the same weights as point by point), so that the loop is vectorised.
+    // glm::dot's terms (the same weights as point by point while the compiler contracts no
+    // multiply-add, as at the default x86-64 target), so that the loop is vectorised.
     if (size_t(light.above.back()) - first + 1 == m) {
       const double *x = onLightAxes_[0].data() + first, *y = onLightAxes_[1].data() + first,
                    *z = onLightAxes_[2].data() + first;
@@ -698,6 +699,16 @@ std::vector<VertexLight> DirectLight::lightAt(const std::vector<Probe>& probes) 
   return out;
 }
 
+namespace {
+
+/// Whether vertex v's light was skipped as black (compute: a probe of reflectance 0).
+bool blackVertex(const PatchMesh& mesh, int v) {
+  for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(v))) return mesh.reflectance(f.idx()) == glm::dvec3(0.0);
+  return true;
+}
+
+}  // namespace
+
 void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLight>* known,
                          const std::unordered_map<int, std::pair<int, int>>* between) {
   if (!enabled_) return;
@@ -742,6 +753,12 @@ void DirectLight::update(const PatchMesh& mesh, std::unordered_map<int, VertexLi
         continue;
       }
       Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(int(k)));
+      // A black end saw nothing, tested or not: what its samples say is no visibility.
+      if (blackVertex(mesh, a) || blackVertex(mesh, b)) {
+        probes.push_back(probe);
+        at.push_back(k);
+        continue;
+      }
       probe.visible = &vertices_[size_t(a)].visible;
       if (vertices_[size_t(b)].visible != *probe.visible) probe.alsoVisible = &vertices_[size_t(b)].visible;
       probes.push_back(probe);

@@ -160,10 +160,10 @@ TEST(DirectLightTest, WhatAPointSeesWholeCastsNoRayAndShowsWhatRaysShow) {
 /// whose samples come out bit for bit (measured 0.983), the RMS difference of their light
 /// relative to the mean (0.05 %), the worst point's relative to its light or kLitShare of the
 /// mean (3.7 %; 9.1 % without the check of the samples both ends see, 4.2 % checking every 8th
-/// of all they agree on), and the rays cast (0.09 of every sample).
+/// of all they agree on, which the bound tells apart), and the rays cast (0.09 of every sample).
 constexpr double kMidpointsExact = 0.97;
 constexpr double kMidpointsRms = 0.001;
-constexpr double kMidpointsWorst = 0.06;
+constexpr double kMidpointsWorst = 0.04;
 constexpr double kMidpointsCost = 0.3;
 
 /// The midpoints of the mesh's edges whose ends see different samples (`ends`: the light at
@@ -242,6 +242,9 @@ TEST(DirectLightTest, APointBetweenTwoEndsLooksForAClearSightWhereTheyDifferMuch
   EXPECT_LT(with.rays(), without.rays());
 }
 
+/// The worst new vertex of the test below (measured 4.3 %).
+constexpr double kBetweenWorst = 0.05;
+
 // Bisection puts vertices midway along edges whose midpoints were never probed (an edge the
 // same round made, or one split to keep the mesh conforming): update() probes them given what
 // the edge's ends see, as a midpoint is, once those are known. Every element of the Cornell box
@@ -299,7 +302,7 @@ TEST(DirectLightTest, AVertexBisectionPutsBetweenTwoOthersIsProbedGivenWhatTheyS
               b.size(), exact, 100 * rms, 100 * worst, every.rays());
   EXPECT_GE(double(exact), kMidpointsExact * double(b.size()));
   EXPECT_LE(rms, kMidpointsRms);
-  EXPECT_LE(worst, kMidpointsWorst);
+  EXPECT_LE(worst, kBetweenWorst);
   EXPECT_LE(double(raysGiven), kMidpointsCost * double(every.rays()));
 }
 
