@@ -310,11 +310,17 @@ void unpackBits(uint64_t w, char* out, size_t count) {
   for (; k < count; ++k) out[k] = char(w >> k & 1);
 }
 
+/// Whether the (ascending) sample indices are consecutive: a light's run of samples, wholly
+/// above a point's horizon, which its bit words and axis arrays hold in order.
+bool isRun(const std::vector<int>& samples) {
+  return !samples.empty() && size_t(samples.back() - samples.front()) + 1 == samples.size();
+}
+
 /// Sets bit samples[k] of `bits` where visible[k] (consecutive samples 64 at a time).
 void setBits(const std::vector<int>& samples, const std::vector<char>& visible, std::vector<uint64_t>& bits) {
   const size_t n = samples.size();
   if (n == 0) return;
-  if (size_t(samples.back() - samples.front()) + 1 != n) {
+  if (!isRun(samples)) {
     for (size_t k = 0; k < n; ++k) bits[size_t(samples[k]) >> 6] |= uint64_t(visible[k]) << (size_t(samples[k]) & 63);
     return;
   }
@@ -363,7 +369,7 @@ void DirectLight::samplesVisible(const Probe& probe, const glm::dvec3& origin, c
     return;
   }
   // Consecutive samples (a light wholly above the horizon) are read 64 at a time.
-  const bool run = n > 0 && size_t(samples.back() - samples.front()) + 1 == n;
+  const bool run = isRun(samples);
   const size_t first = run ? size_t(samples.front()) : 0;
   auto bit = [](const std::vector<uint64_t>& bits, int j) { return char(bits[size_t(j) >> 6] >> (size_t(j) & 63) & 1); };
   if (run)
@@ -510,13 +516,14 @@ double DirectLight::seenShare(const glm::dvec3& p, const glm::dvec3& n, size_t t
   if (seen == 0) return light.share = 0;
   if (light.weight.empty()) {
     const glm::dvec3& ln = lights_[t].normal;
-    const size_t m = light.above.size(), first = size_t(light.above[0]);
+    const size_t m = light.above.size();
     light.weight.resize(m);
     double* weight = light.weight.data();
     // Axis by axis over a run of samples (a light wholly above the horizon), in the order of
     // glm::dot's terms (the same weights as point by point while the compiler contracts no
     // multiply-add, as at the default x86-64 target), so that the loop is vectorised.
-    if (size_t(light.above.back()) - first + 1 == m) {
+    if (isRun(light.above)) {
+      const size_t first = size_t(light.above[0]);
       const double *x = onLightAxes_[0].data() + first, *y = onLightAxes_[1].data() + first,
                    *z = onLightAxes_[2].data() + first;
       for (size_t k = 0; k < m; ++k) {
