@@ -93,7 +93,7 @@ struct SolverBlock {
   std::optional<int> gatherResolution;
   std::optional<long> maxShots;
   std::optional<unsigned> seed;
-  std::optional<bool> cutContacts, adaptive, vertexDirect, finalGather, clusterShooters, resolutionFollowsPower;
+  std::optional<bool> cutContacts, fixFacing, adaptive, vertexDirect, finalGather, clusterShooters, resolutionFollowsPower;
   std::optional<double> minElementEdge, contrast;
   std::optional<long> maxElements;
 };

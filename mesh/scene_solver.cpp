@@ -44,6 +44,7 @@ void readSolverNumbers(const Node& n, SolverBlock& b) {
   optionalNumber(n, "overshoot", 1, 2, "[1, 2]", b.overshoot);
   optionalNumber(n, "exposure", 1e-300, HUGE_VAL, "(0, inf)", b.exposure);
   optionalBool(n, "cut_contacts", b.cutContacts);
+  optionalBool(n, "fix_facing", b.fixFacing);
   optionalBool(n, "adaptive", b.adaptive);
   optionalBool(n, "vertex_direct", b.vertexDirect);
   optionalBool(n, "final_gather", b.finalGather);
@@ -73,7 +74,7 @@ void readSolver(const Node& n, SolverBlock& b) {
   n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution",
                   "emitter_hemicube_resolution", "tolerance",
                   "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
-                  "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts",
+                  "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts", "fix_facing",
                   "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements",
                   "final_gather", "gather_resolution", "cluster_shooters",
                   "resolution_follows_power"});

@@ -190,7 +190,8 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
   std::vector<int> groupOf;
   const std::vector<std::vector<int>> groups = flatGroups(mesh, sceneSize, groupOf);
   std::vector<int> placed(m.n_vertices(), -1);  // mesh vertex → drawn position
-  auto draw = [&](const std::array<int, 3>& corners, const glm::dvec3& normal, int32_t shows) {
+  std::vector<int> drawnSurface;
+  auto draw = [&](const std::array<int, 3>& corners, const glm::dvec3& normal, int32_t shows, int surface) {
     for (int v : corners) {
       if (placed[size_t(v)] < 0) {
         placed[size_t(v)] = int(drawn_.positions.size());
@@ -200,12 +201,13 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
     }
     drawn_.normals.push_back(normal);
     drawnElement_.push_back(shows);
+    drawnSurface.push_back(surface);
   };
   auto drawElement = [&](int e) {
     std::array<int, 3> corners;
     int k = 0;
     for (auto v : m.fv_range(TriMesh::FaceHandle(e))) corners[size_t(k++)] = v.idx();
-    draw(corners, mesh.normal(e), e);
+    draw(corners, mesh.normal(e), e, mesh.surface(e));
   };
   // The corners of one-element regions, drawn as they are: an outline keeps them.
   std::unordered_set<glm::dvec3, PositionHash> singleCorners;
@@ -242,10 +244,12 @@ FlatRegions::FlatRegions(const PatchMesh& mesh, double sceneSize) {
     }
     const int32_t code = -1 - int32_t(regions_.size());
     for (const auto& t : outline.triangles)
-      draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.frame.normal, code);
+      draw({outline.ids[size_t(t[0])], outline.ids[size_t(t[1])], outline.ids[size_t(t[2])]}, region.frame.normal, code,
+           mesh.surface(group[0]));
     regions_.push_back(region);
   }
   cellStart_.push_back(uint32_t(cellSlots_.size()));
+  drawn_.markTwoSided(mesh, drawnSurface);
 }
 
 void FlatRegions::addSlots(const PatchMesh& mesh, const std::vector<int>& group, int g, const std::vector<int>& groupOf,

@@ -147,7 +147,19 @@ HemicubeGeometry HemicubeGeometry::fromMesh(const PatchMesh& mesh) {
     for (auto v : mesh.mesh.fv_range(f)) g.indices.push_back(uint32_t(v.idx()));
     g.normals.push_back(mesh.normal(f.idx()));
   }
+  std::vector<int> surfaceOf(size_t(mesh.elementCount()));
+  for (int e = 0; e < mesh.elementCount(); ++e) surfaceOf[size_t(e)] = mesh.surface(e);
+  g.markTwoSided(mesh, surfaceOf);
   return g;
+}
+
+void HemicubeGeometry::markTwoSided(const PatchMesh& mesh, const std::vector<int>& surfaceOf) {
+  // A surface is two-sided when some of its elements lie on its second side.
+  std::vector<uint8_t> twoSidedSurface(mesh.surfaces.size(), 0);
+  for (int e = 0; e < mesh.elementCount(); ++e) twoSidedSurface[size_t(mesh.surface(e))] |= uint8_t(mesh.side(e) == 1);
+  twoSided.clear();
+  if (std::find(twoSidedSurface.begin(), twoSidedSurface.end(), 1) == twoSidedSurface.end()) return;
+  for (int s : surfaceOf) twoSided.push_back(twoSidedSurface[size_t(s)]);
 }
 
 int HemicubeGeometry::addTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -298,6 +310,10 @@ uint32_t Hemicube::facesShowing(uint32_t shared) {
   return faces;
 }
 
+bool Hemicube::twinShows(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const {
+  return !geometry_.twoSided.empty() && geometry_.twoSided[e] && !(glm::dot(normal, frame_.eye - corner) > 0);
+}
+
 uint32_t Hemicube::itemId(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const {
   // Elements seen from behind occlude but receive nothing; so do the excluded ones.
   if (excluded_[e] == stamp_) return kOccluder;
@@ -323,7 +339,8 @@ void Hemicube::sortAll() {
   std::array<size_t, 5> triangles{};
   for (size_t e = 0; e < elements; ++e) {
     const uint32_t a = I[3 * e], b = I[3 * e + 1], c = I[3 * e + 2];
-    const uint32_t faces = facesShowing(outside_[a] & outside_[b] & outside_[c]);
+    uint32_t faces = facesShowing(outside_[a] & outside_[b] & outside_[c]);
+    if (faces && twinShows(uint32_t(e), geometry_.normals[e], P[a])) faces = 0;
     for (int f = 0; f < 5; ++f) triangles[size_t(f)] += (faces >> f) & 1u;
     facesOf_[e] = uint8_t(faces);
     needed_[a] |= uint8_t(faces), needed_[b] |= uint8_t(faces), needed_[c] |= uint8_t(faces);

@@ -29,10 +29,18 @@ struct HemicubeGeometry {
   std::vector<glm::dvec3> positions;
   std::vector<uint32_t> indices;
   std::vector<glm::dvec3> normals;
+  /// Per element, or empty for none: the element has a twin side in the same place (a two-sided
+  /// surface's), so seen from behind it is not drawn at all and the twin, facing the hemicube
+  /// from there, shows instead. Drawn, the two sides would tie in depth and the back (which
+  /// receives nothing) would win about half the pixels: light into a two-sided wall was lost.
+  std::vector<uint8_t> twoSided;
 
   size_t elementCount() const { return normals.size(); }
   /// The elements of a patch mesh (element e = face e).
   static HemicubeGeometry fromMesh(const PatchMesh& mesh);
+  /// Sets `twoSided` from the surface each element lies on (`surfaceOf[e]`), if any of the mesh's
+  /// surfaces is two-sided.
+  void markTwoSided(const PatchMesh& mesh, const std::vector<int>& surfaceOf);
   /// Adds one triangle as a new element; returns its index.
   int addTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
   /// The bounding-volume hierarchy over the elements, built by the first call (thread-safe)
@@ -189,6 +197,9 @@ class Hemicube {
   /// The item id of element e with this normal and corner: itself if seen from its lit side
   /// and not excluded.
   uint32_t itemId(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const;
+  /// Whether element e, with this normal and corner, is not drawn because its twin on a
+  /// two-sided surface's other side faces the hemicube (HemicubeGeometry::twoSided).
+  bool twinShows(uint32_t e, const glm::dvec3& normal, const glm::dvec3& corner) const;
   /// The faces that may show a triangle whose corners share the outside planes `shared`
   /// (bits), none if it lies below the base plane.
   static uint32_t facesShowing(uint32_t shared);

@@ -93,6 +93,7 @@ void Hemicube::collect(const ElementHierarchy::Node& leaf) {
     const uint32_t faces = facesShowing(outside[c[0]] & outside[c[1]] & outside[c[2]]);
     if (!faces) continue;
     const uint32_t e = hierarchy_->order()[i];
+    if (twinShows(e, hierarchy_->normals()[i], positions[c[0]])) continue;
     pendingAt_[e] = uint32_t(pending_.size());
     Pending& p = pending_.emplace_back();
     for (size_t k = 0; k < 3; ++k) p.corners[k] = local[c[k]];

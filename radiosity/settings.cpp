@@ -34,6 +34,7 @@ void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   s.maxElementEdge = mesh.maxElementEdge;
   s.maxPatchEdge = mesh.maxPatchEdge;
   s.cutContacts = mesh.cutContacts;
+  s.fixFacing = pick(flags.fixFacing, file.fixFacing, true);
   s.adaptive = pick(flags.adaptive, file.adaptive, true);
   s.finalGather = pick(flags.finalGather, file.finalGather, true);
   const double ratio = s.finalGather ? kGatherMinElementRatio : kDefaultMinElementRatio;

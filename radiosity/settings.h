@@ -105,6 +105,8 @@ struct Settings : Shooting {
   bool resolutionFollowsPower = kDefaultResolutionFollowsPower;  ///< dimmer shots, coarser hemicubes
 
   bool cutContacts = true;   ///< cut surfaces along contacts, leave out what they enclose
+  /// Turn mesh-file surfaces that the lit space sees from their backs round (mesh/facing.h).
+  bool fixFacing = true;
   /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to
   /// minElementEdge; the contact lines are then graded by that refinement, not beforehand.
   bool adaptive = true;

@@ -212,8 +212,13 @@ Scene loadSceneToSolve(const std::string& path) {
 }
 
 MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options) {
-  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr};
+  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr, false, {}, {}, std::chrono::steady_clock::now(), {}};
+  const auto facingStart = StageTimes::Clock::now();
+  if (settings.fixFacing) s.facing = turnToLitSpace(s.scene);
+  const double facingSeconds = StageTimes::since(facingStart);
   s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
+  s.mesh.stats.stages.add("facing", facingSeconds);
+  s.mesh.warnings.insert(s.mesh.warnings.begin(), s.facing.warnings.begin(), s.facing.warnings.end());
   passOn(s.mesh.warnings, 0, options);
   if (options.requireEmitter) requireEmitter(s);
   // A mesh built again has the same repairs first: only what follows is new.

@@ -18,6 +18,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/facing.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene.h"
 #include "radiosity/adaptive.h"
@@ -55,6 +56,8 @@ struct MeshedScene {
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  /// Mesh-file surfaces turned to face the lit space before meshing (settings.fixFacing).
+  FacingRepair facing;
 };
 
 struct MeshingOptions {

@@ -201,3 +201,11 @@ cli_test(bad.element_cap_raised 1 "found 0.001 .about .*e.12 elements."
          OUT/f.ply mesh ${PROJECT_SOURCE_DIR}/scenes/cornell.json -o OUT/f.ply --max-element-edge 0.001 --max-elements 3000000)
 cli_test(bad.element_cap_mesh_faces 1 "box_on_floor.json: solver.max_element_edge .--max-element-edge.: expected an element edge giving at most 10 elements"
          OUT/f.ply mesh ${DATA}/box_on_floor.json -o OUT/f.ply --max-elements 10)
+
+# Faces that point away from the light (issue 30): the room wound outwards is turned round, said
+# once, naming the surface and the flag that keeps the file's facing.
+cli_test(info.inverted_room 0 "surface 'room' .white. faces away from the light: all 6 of its faces.*--fix-facing" ""
+         info ${DATA}/inverted_room.json)
+# The reference finds points in a 0.5 mm gap (under 1e-3 of the scene's size).
+cli_test(reference.narrow_gap 0 "2 points, .* wrote" OUT/gap.csv
+         reference ${DATA}/floor_under_panel.json -o OUT/gap.csv --points ${DATA}/gap_points.txt --paths 64)

@@ -78,6 +78,46 @@ void expectWithin(const glm::dvec3& exact, const PointEstimate& e, const glm::dv
 /// Furnace (oracles.md §4): a closed cube, every face glowing E = 1 with reflectance ρ:
 /// B = E/(1 − ρ) at every point, near edges and corners too: every point within kBias standard
 /// errors, and beyond kSigmas no more than chance puts there (0.27 % of 108: at most 2).
+/// A floor with a panel lying 0.5 mm above it (a 6 mm gap under a sofa, a lamp hung under a
+/// ceiling, at scale), facing `panelUp` or down; the panel is surface 1.
+Scene floorUnderAPanel(bool panelUp) {
+  const std::string panel = panelUp ? "[[0.2,0.0005,0.2],[0.2,0.0005,0.8],[0.8,0.0005,0.8],[0.8,0.0005,0.2]]"
+                                    : "[[0.2,0.0005,0.2],[0.8,0.0005,0.2],[0.8,0.0005,0.8],[0.2,0.0005,0.8]]";
+  return parseScene(R"({"version": 1, "materials": {"w": {"reflectance": [0.5, 0.5, 0.5]},
+      "l": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+    "surfaces": [{"name": "floor", "material": "w", "polygon": [[0,0,0],[0,0,1],[1,0,1],[1,0,0]]},
+                 {"name": "panel", "material": "w", "polygon": )" + panel + R"(},
+                 {"name": "lamp", "material": "l", "polygon": [[0,1,0],[1,1,0],[1,1,1],[0,1,1]]}]})",
+                    "gap.json", "");
+}
+
+/// A point the user gives on a surface is found however close another surface lies in front of
+/// it (its back or its front) or behind it: the nearest surface along the normal whose side faces
+/// the normal's way, within the tolerance (here 2 mm, four times the gap).
+TEST(ReferenceTest, PointsInANarrowGapAreLocated) {
+  for (bool panelUp : {false, true}) {
+    const Scene scene = floorUnderAPanel(panelUp);
+    const TraceScene traced(scene);
+    SurfacePoint onFloor{{0.5, 0.0001, 0.5}, {0, 1, 0}, -1, ""};
+    ASSERT_TRUE(locatePoint(traced, onFloor, 0.002)) << "panel up " << panelUp;
+    EXPECT_EQ(onFloor.surface, 0);
+    EXPECT_NEAR(onFloor.position.y, 0.0, 1e-9);
+    if (!panelUp) continue;
+    SurfacePoint onPanel{{0.5, 0.0004, 0.5}, {0, 1, 0}, -1, ""};  // nearer the panel's top
+    ASSERT_TRUE(locatePoint(traced, onPanel, 0.002));
+    EXPECT_EQ(onPanel.surface, 1);
+    EXPECT_NEAR(onPanel.position.y, 0.0005, 1e-9);
+  }
+  // Under a panel facing down, a point just below it facing down is on the panel.
+  const TraceScene traced(floorUnderAPanel(false));
+  SurfacePoint under{{0.5, 0.0004, 0.5}, {0, -1, 0}, -1, ""};
+  ASSERT_TRUE(locatePoint(traced, under, 0.002));
+  EXPECT_EQ(under.surface, 1);
+  // A point facing a surface's back has no surface there.
+  SurfacePoint below{{0.5, -0.0001, 0.5}, {0, -1, 0}, -1, ""};
+  EXPECT_FALSE(locatePoint(traced, below, 0.00015));
+}
+
 TEST(ReferenceTest, FurnaceIsExactAtEveryPoint) {
   const Scene base = loadScene(kScenes + "furnace.json");
   int beyond = 0;

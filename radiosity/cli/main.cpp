@@ -55,6 +55,10 @@ void addSizeFlags(CLI::App& app, SolverBlock& flags) {
   app.add_option("--cut-contacts", flags.cutContacts,
                  "Cut surfaces along the lines where others touch them and leave out what those "
                  "enclose, true or false (solver.cut_contacts; default true)");
+  app.add_option("--fix-facing", flags.fixFacing,
+                 "Turn round mesh-file surfaces that light from the emitters meets mostly on their "
+                 "backs (walls wound outwards), with a warning naming each, true or false "
+                 "(solver.fix_facing; default true)");
   addInRange(app, "--max-elements", flags.maxElements, 1L, 1'000'000'000'000L,
              "Refuse meshes of more elements than this, estimated before meshing; adaptive "
              "refinement stops there (solver.max_elements; default 2000000, ~14 GiB)");

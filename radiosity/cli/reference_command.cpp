@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 #include <unistd.h>
 
 #include "mesh/error.h"
+#include "mesh/facing.h"
 #include "mesh/input_file.h"
 #include "mesh/output_file.h"
 #include "mesh/reference_points.h"
@@ -29,6 +31,7 @@ struct ReferenceOptions {
   long paths = 0, minPaths = pathtrace::kDefaultMinPaths, maxPaths = pathtrace::kDefaultMaxPaths;
   double relativeError = 0.01;
   unsigned seed = 1;
+  std::optional<bool> fixFacing;
 };
 
 /// One line's point: six finite numbers (position, non-zero normal) and an optional tag.
@@ -202,6 +205,8 @@ void runReference(const ReferenceOptions& o) {
   checkOutputPath(o.output);
   Scene scene = loadSceneToSolve(o.scene);
   printWarnings(scene.warnings);
+  // The surfaces a solve would turn round, turned alike: the reference measures the same scene.
+  if (o.fixFacing.value_or(scene.solver.fixFacing.value_or(true))) printWarnings(turnToLitSpace(scene).warnings);
   const pathtrace::TraceScene traced(scene);
   const std::vector<pathtrace::SurfacePoint> points = pointsFor(o, scene, traced);
   const pathtrace::TraceOptions options = traceOptions(o);
@@ -244,6 +249,9 @@ Command addReferenceCommand(CLI::App& app) {
   addPointFlags(*c.app, *c.o);
   addPathFlags(*c.app, *c.o);
   c.app->add_option("--seed", c.o->seed, "Seed of the random streams (default 1)");
+  c.app->add_option("--fix-facing", c.o->fixFacing,
+                    "Turn round mesh-file surfaces that light meets mostly on their backs, as a solve does "
+                    "(solver.fix_facing; default true)");
   return c.runs(runReference);
 }
 

@@ -37,6 +37,7 @@ Json settingsBlock(const Settings& settings) {
   s["max_element_edge"] = settings.maxElementEdge;
   s["max_patch_edge"] = settings.maxPatchEdge;
   s["cut_contacts"] = settings.cutContacts;
+  s["fix_facing"] = settings.fixFacing;
   addShootingSettings(s, settings);
   addRefinementSettings(s, settings);
   return s;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include <glm/geometric.hpp>
@@ -25,6 +26,10 @@ constexpr int kTries = 64;
 constexpr double kMaxContactPairs = 5e7;
 /// Located points lie within this (normalised) distance of their surface.
 constexpr double kLocateTolerance = 1e-4;
+/// locatePoint looks at this many surfaces along a point's normal at most, stepping this far
+/// (in units of the scene's size) past each.
+constexpr int kMaxCrossings = 16;
+constexpr double kCrossingStep = 1e-6;  // above single precision's round-off at the scene's size
 
 /// A stretch of line near which points go: on `surface`, in the plane with normal `normal`.
 struct Segment {
@@ -247,13 +252,26 @@ std::vector<SurfacePoint> placePoints(const TraceScene& scene, int count, uint64
 bool locatePoint(const TraceScene& scene, SurfacePoint& point, double tolerance) {
   const glm::dvec3 n = glm::normalize(point.normal);
   const double reach = tolerance / scene.size();
-  const glm::dvec3 from = scene.toLocal(point.position) + reach * n;
-  const TraceHit hit = scene.intersect(from, -n, 2 * reach);
-  if (hit.triangle < 0) return false;
-  if (!scene.reflects(hit)) return false;  // the back of a one-sided surface
-  point.surface = scene.triangle(hit.triangle).surface;
-  point.position = scene.toScene(hit.point);
-  point.normal = scene.sideNormal(hit);
+  const glm::dvec3 at = scene.toLocal(point.position);
+  // Every surface crossed on the normal's line within reach on either side, the nearest to the
+  // point whose lit side faces the normal's way kept: another surface just in front (a narrow
+  // gap, a lamp under a ceiling) or just behind (a tread through a wall) is passed over.
+  std::optional<TraceHit> best;
+  double bestDistance = HUGE_VAL, travelled = 0;
+  glm::dvec3 from = at + reach * n;
+  for (int crossing = 0; crossing < kMaxCrossings && travelled < 2 * reach; ++crossing) {
+    const TraceHit hit = scene.intersect(from, -n, 2 * reach - travelled);
+    if (hit.triangle < 0) break;
+    const double distance = std::abs(glm::dot(hit.point - at, n));
+    if (scene.reflects(hit) && glm::dot(scene.sideNormal(hit), n) > 0 && distance < bestDistance)
+      best = hit, bestDistance = distance;
+    travelled += glm::length(hit.point - from) + kCrossingStep;
+    from = hit.point - kCrossingStep * n;
+  }
+  if (!best) return false;
+  point.surface = scene.triangle(best->triangle).surface;
+  point.position = scene.toScene(best->point);
+  point.normal = scene.sideNormal(*best);
   return true;
 }
 
