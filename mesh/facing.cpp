@@ -23,18 +23,20 @@ constexpr unsigned kSeed = 1;
 /// Tries at drawing a point inside a polygon from its box before the path is given up.
 constexpr int kPointTries = 32;
 
-/// A path's own random numbers in [0, 1): splitmix64 from (seed, path), so that a path is the
-/// same whichever worker follows it.
+/// splitmix64's finaliser: a well-mixed 64-bit value of x.
+uint64_t mix(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/// A path's own random numbers in [0, 1): splitmix64 from a state mixed from (seed, path), so
+/// that a path is the same whichever worker follows it, and neighbouring paths' streams are not
+/// each other's shifted by a draw (as a sum of the path index would make them).
 class PathRandom {
  public:
-  PathRandom(unsigned seed, size_t path)
-      : state_((uint64_t(seed) << 32) ^ (uint64_t(path) * 0x9E3779B97F4A7C15ull)) {}
-  double next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  }
+  PathRandom(unsigned seed, size_t path) : state_(mix(mix(uint64_t(seed)) ^ uint64_t(path))) {}
+  double next() { return double(mix(state_ += 0x9E3779B97F4A7C15ull) >> 11) * 0x1.0p-53; }
 
  private:
   uint64_t state_;
@@ -259,7 +261,7 @@ FacingRepair turnToLitSpace(Scene& scene) {
   for (size_t s = 0; s < scene.surfaces.size(); first += scene.surfaces[s].polygons.size(), ++s) {
     Surface& surface = scene.surfaces[s];
     if (!surface.fromMeshFile || surface.twoSided) continue;
-    const Turned turned = turnSheets(surface, &hits[first]);
+    const Turned turned = turnSheets(surface, hits.data() + first);
     if (turned.faces == 0) continue;
     repair.turned.push_back(int(s));
     repair.turnedFaces += turned.faces;

@@ -60,8 +60,11 @@ void meshWithoutRays(MeshedScene& s) {
   if (!s.settings.adaptive || emitting <= kMaxRayEmitterPatches) return;
   Settings graded = s.settings;
   graded.adaptive = false;
-  if (graded.mesh().contactGrading != s.settings.mesh().contactGrading)
+  if (graded.mesh().contactGrading != s.settings.mesh().contactGrading) {
     s.mesh = buildPatchMesh(s.scene, graded.mesh());
+    // The same repairs first, as meshScene put them: only what follows is new.
+    s.mesh.warnings.insert(s.mesh.warnings.begin(), s.facing.warnings.begin(), s.facing.warnings.end());
+  }
   s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
   s.mesh.warnings.push_back(tooManyEmitters(emitting));
 }

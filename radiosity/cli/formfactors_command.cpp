@@ -145,6 +145,8 @@ struct SurfaceAlone {
       if (glm::dot(mesh.normal(e), view.x - c[0]) > 0)  // only the lit side receives
         exact += pointPolygonFormFactor(view.x, view.n, {c[0], c[1], c[2]});
     }
+    // A two-sided surface's sides are drawn as the full hemicube draws them: the one facing the view.
+    geometry.markTwoSided(mesh, std::vector<int>(geometry.elementCount(), int(s)));
   }
 };
 

@@ -263,7 +263,7 @@ bool locatePoint(const TraceScene& scene, SurfacePoint& point, double tolerance)
     const TraceHit hit = scene.intersect(from, -n, 2 * reach - travelled);
     if (hit.triangle < 0) break;
     const double distance = std::abs(glm::dot(hit.point - at, n));
-    if (scene.reflects(hit) && glm::dot(scene.sideNormal(hit), n) > 0 && distance < bestDistance)
+    if (scene.reflects(hit) && distance < bestDistance)  // the side met faces the normal's way
       best = hit, bestDistance = distance;
     travelled += glm::length(hit.point - from) + kCrossingStep;
     from = hit.point - kCrossingStep * n;
