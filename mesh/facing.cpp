@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/geometry.h"
+#include "mesh/number_text.h"
 #include "mesh/parallel.h"
 #include "mesh/surface_rays.h"
 
@@ -207,14 +208,6 @@ Turned turnSheets(Surface& surface, const SideHits* hits) {
     turned.hits.front += hits[k].front, turned.hits.back += hits[k].back;
   }
   return turned;
-}
-
-/// printf's text of the format and arguments (at most 511 characters).
-template <class... Args>
-std::string formatted(const char* format, Args... args) {
-  char text[512];
-  std::snprintf(text, sizeof text, format, args...);
-  return text;
 }
 
 /// The warning for a surface some or all of whose faces were turned round.

@@ -22,6 +22,14 @@ inline std::string exactNumberText(double v) {
   return buf;
 }
 
+/// printf's text of the format and arguments (at most 511 characters).
+template <class... Args>
+std::string formatted(const char* format, Args... args) {
+  char text[512];
+  std::snprintf(text, sizeof text, format, args...);
+  return text;
+}
+
 /// A finite number filling the whole word into v, or false.
 inline bool finiteNumber(const std::string& word, double& v) {
   char* end = nullptr;

@@ -13,6 +13,7 @@
 #include "mesh/error.h"
 #include "mesh/facing.h"
 #include "mesh/input_file.h"
+#include "mesh/number_text.h"
 #include "mesh/output_file.h"
 #include "mesh/reference_points.h"
 #include "radiosity/cli/commands.h"
@@ -133,14 +134,6 @@ ReferenceFile referencePoints(const Scene& scene, const std::vector<pathtrace::S
     counts.add(estimates[i], capping, maxPaths);
   }
   return file;
-}
-
-/// printf's text of the format and arguments (at most 255 characters).
-template <class... Args>
-std::string formatted(const char* format, Args... args) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, args...);
-  return buf;
 }
 
 /// The header's paths-per-point line: the fixed count, or the relative error, bounds and capped points.
