@@ -109,7 +109,8 @@ TEST(ReferenceTest, PointsInANarrowGapAreLocated) {
     EXPECT_NEAR(onPanel.position.y, 0.0005, 1e-9);
   }
   // Under a panel facing down, a point just below it facing down is on the panel.
-  const TraceScene traced(floorUnderAPanel(false));
+  const Scene panelDown = floorUnderAPanel(false);  // a TraceScene reads the scene it was given
+  const TraceScene traced(panelDown);
   SurfacePoint under{{0.5, 0.0004, 0.5}, {0, -1, 0}, -1, ""};
   ASSERT_TRUE(locatePoint(traced, under, 0.002));
   EXPECT_EQ(under.surface, 1);

@@ -45,6 +45,7 @@ class TraceScene {
   /// Triangulates every polygon of the scene and builds the ray-casting structure. The scene
   /// must outlive it (materials are read from it).
   explicit TraceScene(const Scene& scene);
+  explicit TraceScene(Scene&&) = delete;  ///< a temporary scene would die before the tracer
   ~TraceScene();
   TraceScene(const TraceScene&) = delete;
   TraceScene& operator=(const TraceScene&) = delete;
