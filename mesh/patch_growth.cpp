@@ -31,23 +31,27 @@ std::map<std::pair<int, int>, std::vector<int>> trianglesByEdge(const std::vecto
   return byEdge;
 }
 
-/// Each triangle's neighbours across its edges, in the order of the edges' point ids.
-std::vector<std::vector<int>> edgeNeighbours(const std::vector<std::array<int, 3>>& triangles) {
+/// Each triangle's neighbours across its edges (seams apart), in the order of the edges' point
+/// ids.
+std::vector<std::vector<int>> edgeNeighbours(const std::vector<std::array<int, 3>>& triangles,
+                                             const EdgeSet& seams) {
   std::vector<std::vector<int>> neighbours(triangles.size());
-  for (const auto& [edge, users] : trianglesByEdge(triangles))
+  for (const auto& [edge, users] : trianglesByEdge(triangles)) {
+    if (seams.count(edge)) continue;
     for (int a : users)
       for (int b : users)
         if (a != b) neighbours[a].push_back(b);
+  }
   return neighbours;
 }
 
 /// The triangles of one piece as a graph (centres in the frame, neighbours, sweep order).
 TriangleGraph triangleGraph(const PointTable& table, const PlaneFrame& frame,
-                            const std::vector<std::array<int, 3>>& triangles) {
+                            const std::vector<std::array<int, 3>>& triangles, const EdgeSet& seams) {
   TriangleGraph g;
   for (const auto& t : triangles)
     g.centre.push_back(frame.project((table[t[0]] + table[t[1]] + table[t[2]]) / 3.0));
-  g.neighbours = edgeNeighbours(triangles);
+  g.neighbours = edgeNeighbours(triangles, seams);
   for (int k = 0; k < int(triangles.size()); ++k) g.order.push_back(k);
   std::sort(g.order.begin(), g.order.end(),
             [&](int a, int b) { return sweepLess(g.centre[a], g.centre[b]); });
@@ -126,8 +130,8 @@ double diameter(const PointTable& table, const std::vector<int>& hull) {
 
 std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFrame& frame,
                                           const std::vector<std::array<int, 3>>& triangles,
-                                          double maxDiameter) {
-  const TriangleGraph g = triangleGraph(table, frame, triangles);
+                                          const EdgeSet& seams, double maxDiameter) {
+  const TriangleGraph g = triangleGraph(table, frame, triangles, seams);
   std::vector<std::vector<int>> patches;
   std::vector<bool> taken(triangles.size(), false);
   for (int seed : g.order)

@@ -5,6 +5,7 @@
 
 #include "mesh/geometry.h"
 #include "mesh/planar_pieces.h"
+#include "mesh/seams.h"
 
 namespace rad::meshing {
 
@@ -18,9 +19,10 @@ double diameter(const PointTable& table, const std::vector<int>& hull);
 /// Groups the triangles of one planar piece into patches no wider than maxDiameter: each patch
 /// grows from the first free triangle in sweep order (along the frame's u axis, then v) to the
 /// free edge-neighbours nearest its seed while its diameter allows, so patches are connected
-/// and compact. Returns triangle indices per patch.
+/// and compact; never across a seam (a patch shoots from one point, which must see what all
+/// of it sees). Returns triangle indices per patch.
 std::vector<std::vector<int>> growPatches(const PointTable& table, const PlaneFrame& frame,
                                           const std::vector<std::array<int, 3>>& triangles,
-                                          double maxDiameter);
+                                          const EdgeSet& seams, double maxDiameter);
 
 }  // namespace rad::meshing

@@ -29,6 +29,7 @@ PatchMesh::PatchMesh() {
   mesh.add_property(area_, "area");
   mesh.add_property(reflectance_, "reflectance");
   mesh.add_property(emission_, "emission");
+  mesh.add_property(seam_, "seam");
 }
 
 bool PatchMesh::emits(int p) const {

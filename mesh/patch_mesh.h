@@ -96,6 +96,10 @@ class PatchMesh {
   glm::dvec3 emission(int e) const { return toGlm(mesh.property(emission_, face(e))); }
   glm::dvec3 normal(int e) const { return toGlm(mesh.normal(face(e))); }
   glm::dvec3 centroid(int e) const;
+  /// Whether vertex v lies on a seam: a contact line across its surface (a wall through a
+  /// tread), where each side has vertices of its own, at the same points.
+  bool seam(TriMesh::VertexHandle v) const { return mesh.property(seam_, v); }
+  void setSeam(TriMesh::VertexHandle v) { mesh.property(seam_, v) = true; }
   /// Whether some element of patch p emits.
   bool emits(int p) const;
   /// The three corners of element e, counter-clockwise seen from its lit side.
@@ -122,6 +126,7 @@ class PatchMesh {
   OpenMesh::FPropHandleT<int> surface_, side_, patch_, base_;
   OpenMesh::FPropHandleT<double> area_;
   OpenMesh::FPropHandleT<OpenMesh::Vec3d> reflectance_, emission_;
+  OpenMesh::VPropHandleT<bool> seam_;
 };
 
 template <class InGroup>

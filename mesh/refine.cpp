@@ -67,12 +67,15 @@ bool acrossCrease(const Mesh& m, Mesh::VertexHandle v, Mesh::VertexHandle w) {
   return (m.normal(v) | m.normal(w)) < std::cos(kCreaseAngleDeg * M_PI / 180.0);
 }
 
-/// Adds the vertices of v's side in v's cell (after v) within `distance` of it.
-void addCoincident(const Mesh& m, const SpatialHash& grid, const std::vector<int>& side,
+/// Adds the vertices of v's side in v's cell (after v) within `distance` of it, apart from
+/// those meant apart: across a crease, or the two sides of a seam.
+void addCoincident(const PatchMesh& pm, const SpatialHash& grid, const std::vector<int>& side,
                    Mesh::VertexHandle v, double distance, std::vector<TJunction>& out) {
+  const Mesh& m = pm.mesh;
   const glm::dvec3 p = PatchMesh::toGlm(m.point(v));
   grid.visit(p, p, [&](int w) {
     if (w <= v.idx() || side[size_t(w)] != side[size_t(v.idx())] || acrossCrease(m, v, Mesh::VertexHandle(w))) return;
+    if (pm.seam(v) && pm.seam(Mesh::VertexHandle(w))) return;
     if ((m.point(Mesh::VertexHandle(w)) - m.point(v)).norm() <= distance)
       out.push_back({w, v.idx(), v.idx()});
   });
@@ -211,8 +214,10 @@ class Bisector {
     const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
     if (mid == m_.point(a) || mid == m_.point(b)) return false;
     const auto halved = halvedAreas(h);
+    const bool onSeam = pm_.seam(a) && pm_.seam(b) && m_.is_boundary(e);
     const size_t facesBefore = m_.n_faces();
     auto v = m_.add_vertex(mid);
+    if (onSeam) pm_.setSeam(v);
     if (splits_) splits_->push_back({v.idx(), a.idx(), b.idx()});
     m_.split_copy(e, v);  // the new faces copy their parent's properties
     for (auto& [f, area] : halved) pm_.setArea(f.idx(), area);
@@ -272,7 +277,7 @@ std::vector<TJunction> findTJunctions(const PatchMesh& pm, double tolerance, boo
   const std::vector<int> side = vertexSides(pm);
   const SpatialHash grid = vertexHash(m, cell);
   // Coincident vertices of one side.
-  for (auto v : m.vertices()) addCoincident(m, grid, side, v, tolerance * cell, out);
+  for (auto v : m.vertices()) addCoincident(pm, grid, side, v, tolerance * cell, out);
   // Vertices inside edges: visit the cells the edge's bounding box covers.
   for (auto e : m.edges())
     addInsideEdge(m, grid, acrossSurfaces ? nullptr : &side, e, tolerance, out);

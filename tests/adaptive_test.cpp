@@ -33,7 +33,7 @@ constexpr double kLedger = 1e-9;
 /// side or, where surfaces meet, of another.
 TEST(AdaptiveTest, EveryOutputMeshIsConforming) {
   std::vector<std::string> paths;
-  for (const char* dir : {"scenes", "scenes/stress", "tests/data"})
+  for (const char* dir : {"scenes", "scenes/stress", "tests/data", "tests/data/piercing"})
     for (const auto& path : test::sceneFiles(dir)) paths.push_back(path);
   ASSERT_GE(paths.size(), 20u);
   int refined = 0;

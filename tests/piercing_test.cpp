@@ -1,0 +1,133 @@
+// Surfaces that pass through others (issue 30): a tread through a wall, a cornice pushed into
+// the ceiling and the wall, a frame through a painting (tests/data/piercing/, rooms of 4 × 3 × 4
+// m lit by a ceiling lamp). Each surface is cut along the line where another passes through it,
+// and the two sides of that line get vertices of their own (a seam): the part of the tread
+// beyond the wall shows no light, the part in the room shows its own. Checked at defaults
+// against path-traced references (`radiosity reference`, stored beside the scenes) at points
+// 2 and 5 cm from the lines.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mesh/refine.h"
+#include "tests/solve_support.h"
+
+namespace rad {
+namespace {
+
+const std::string kPiercing = test::kData + "piercing/";
+
+/// The shown radiosity 2 and 5 cm from where surfaces pass through each other, RMS over the
+/// points of a tag (the reference's own noise is about 0.5 %). Measured: tread top 0.7 %, wall
+/// above and below it 0.6 and 0.9 %; cornice scene 1.1 % (2.2 % before the seams: the tread's
+/// top showed 34 % too dark at 2 cm, its vertices on the wall's line taking the dark of the
+/// tread's part beyond the wall).
+constexpr double kNearLineRms = 0.02;
+/// Known limit: the wall 2 cm beside the tread's side and under the frame's bars lies in a
+/// penumbra 1–3 cm wide (the 4–6 cm part casting it is as close), narrower than the smallest
+/// element adaptive refinement makes (element edge / 8, 3.3 cm here). Measured worst: −12 %
+/// beside the tread, −6.7 % on the painting, −4.7 % on the wall under the frame.
+constexpr double kThinPenumbraWorst = 0.15;
+/// A vertex on a seam shows at least this share of the median of its neighbours on its side.
+constexpr double kSeamVertexShare = 0.5;
+
+int surfaceNamed(const Scene& scene, const std::string& name) {
+  for (size_t s = 0; s < scene.surfaces.size(); ++s)
+    if (scene.surfaces[s].name == name) return int(s);
+  return -1;
+}
+
+/// The tread's top vertices (normal up) on the wall's plane x = −2, by position.
+std::map<std::array<double, 3>, std::vector<TriMesh::VertexHandle>> treadTopOnTheWall(const PatchMesh& pm, int tread) {
+  std::map<std::array<double, 3>, std::vector<TriMesh::VertexHandle>> at;
+  for (auto v : pm.mesh.vertices()) {
+    const auto p = pm.mesh.point(v);
+    if (p[0] != -2.0 || p[1] != 0.56) continue;
+    bool top = false;
+    for (auto f : pm.mesh.vf_range(v)) top = top || (pm.surface(f.idx()) == tread && pm.normal(f.idx()).y > 0.9);
+    if (top) at[{p[0], p[1], p[2]}].push_back(v);
+  }
+  return at;
+}
+
+/// Whether vertex v's elements lie in the room (x > −2).
+bool inTheRoom(const PatchMesh& pm, TriMesh::VertexHandle v) {
+  for (auto f : pm.mesh.vf_range(v))
+    if (pm.centroid(f.idx()).x < -2.0) return false;
+  return true;
+}
+
+/// Meshed as `radiosity solve` meshes it, the tread's top has two vertices at every point of the
+/// wall's line across it, one per side; no patch reaches across; the mesh stays conforming.
+TEST(PiercingTest, TreadIsSplitAlongTheWall) {
+  Scene scene = loadSceneToSolve(kPiercing + "tread.json");
+  const Settings settings = resolveSettings(scene, SolverBlock{});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
+  const PatchMesh& pm = meshed.mesh;
+  const int tread = surfaceNamed(meshed.scene, "tread");
+  ASSERT_GE(tread, 0);
+  const auto onLine = treadTopOnTheWall(pm, tread);
+  EXPECT_GE(onLine.size(), 9u);  // the 1 m line split at least every element edge / 8
+  for (const auto& [p, vertices] : onLine) {
+    ASSERT_EQ(vertices.size(), 2u) << "at z = " << p[2];
+    EXPECT_NE(inTheRoom(pm, vertices[0]), inTheRoom(pm, vertices[1])) << "at z = " << p[2];
+    for (auto v : vertices) EXPECT_TRUE(pm.seam(v));
+  }
+  for (const Patch& patch : pm.patches) {
+    if (patch.surface != tread) continue;
+    int inside = 0;
+    for (int e : patch.elements) inside += pm.centroid(e).x > -2.0;
+    EXPECT_TRUE(inside == 0 || inside == int(patch.elements.size())) << "a tread patch reaches through the wall";
+  }
+  const auto found = findTJunctions(pm, 1e-7, true);
+  EXPECT_TRUE(found.empty()) << found.size() << " T-junctions";
+}
+
+/// The tread through the wall at defaults: right beside the line on both surfaces, and no vertex
+/// on the tread's seam, on the room's side, darker than half its neighbours' median.
+TEST(PiercingTest, TreadThroughAWallAtDefaults) {
+  const auto s = test::solveLikeCli(kPiercing + "tread.json");
+  const std::string reference = kPiercing + "tread_reference.csv";
+  for (const char* tag : {"tread_top", "wall_above", "wall_below"})
+    EXPECT_LE(test::trueError(*s, reference, tag), kNearLineRms) << tag;
+  EXPECT_LE(std::abs(test::trueErrorOf(*s, reference, "wall_side").worst), kThinPenumbraWorst);
+  const PatchMesh& pm = s->meshed.mesh;
+  const int tread = surfaceNamed(s->meshed.scene, "tread");
+  int checked = 0;
+  for (const auto& [p, vertices] : treadTopOnTheWall(pm, tread))
+    for (auto v : vertices) {
+      if (!inTheRoom(pm, v)) continue;
+      std::vector<double> around;
+      for (auto w : pm.mesh.vv_range(v)) around.push_back(luminance(s->shown[size_t(w.idx())]));
+      std::nth_element(around.begin(), around.begin() + long(around.size() / 2), around.end());
+      EXPECT_GE(luminance(s->shown[size_t(v.idx())]), kSeamVertexShare * around[around.size() / 2]) << "at z = " << p[2];
+      ++checked;
+    }
+  EXPECT_GE(checked, 9);
+}
+
+/// A cornice pushed into the ceiling and the wall: right on all four sides of its lines.
+TEST(PiercingTest, CornicePushedIntoTheCeilingAtDefaults) {
+  const auto s = test::solveLikeCli(kPiercing + "cornice.json");
+  const std::string reference = kPiercing + "cornice_reference.csv";
+  for (const char* tag : {"ceiling", "wall", "cornice_face", "cornice_under"})
+    EXPECT_LE(test::trueError(*s, reference, tag), kNearLineRms) << tag;
+}
+
+/// A frame through a painting 1 mm off the wall: its front is right; the painting and the wall
+/// beside its bars lie in the bars' thin penumbrae (kThinPenumbraWorst).
+TEST(PiercingTest, FrameThroughAPaintingAtDefaults) {
+  const auto s = test::solveLikeCli(kPiercing + "frame.json");
+  const std::string reference = kPiercing + "frame_reference.csv";
+  EXPECT_LE(test::trueError(*s, reference, "frame_front"), kNearLineRms);
+  for (const char* tag : {"painting", "wall"})
+    EXPECT_LE(std::abs(test::trueErrorOf(*s, reference, tag).worst), kThinPenumbraWorst) << tag;
+}
+
+}  // namespace
+}  // namespace rad
