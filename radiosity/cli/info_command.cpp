@@ -102,8 +102,10 @@ std::string enclosingNames(const Scene& scene, const std::vector<int>& enclosedB
 
 /// Contacts: where surfaces touch, the mesh is cut; what they enclose is left out.
 void printContacts(const Scene& scene, const PatchMesh& mesh) {
-  std::printf("contacts    %d lines where surfaces touch; %.9g cut away\n", mesh.contactLines,
-              cutAwayArea(mesh));
+  int seam = 0;
+  for (auto v : mesh.mesh.vertices()) seam += mesh.seam(v);
+  std::printf("contacts    %d lines where surfaces touch; %.9g cut away; %d vertices on seams (a vertex per side)\n",
+              mesh.contactLines, cutAwayArea(mesh), seam);
   for (const auto& c : mesh.cutAway) {
     const std::string by = enclosingNames(scene, c.enclosedBy);
     std::printf("  %-20s %14.9g cut away: enclosed by %s\n", scene.surfaces[c.surface].name.c_str(),

@@ -89,6 +89,13 @@ int blackElements(const PatchMesh& mesh) {
   return black;
 }
 
+/// The vertices on seams: each side of a contact line across a surface has its own.
+int seamVertices(const PatchMesh& mesh) {
+  int seam = 0;
+  for (auto v : mesh.mesh.vertices()) seam += mesh.seam(v);
+  return seam;
+}
+
 /// What the scene did not need: black elements receive nothing (they only occlude), and
 /// patches whose unshot power never became the largest never shot.
 Json leftOutBlock(const MeshedScene& scene, const ProgressiveSolver& solver) {
@@ -102,6 +109,7 @@ Json leftOutBlock(const MeshedScene& scene, const ProgressiveSolver& solver) {
           {"area_cut_away", cutArea},
           {"cut_away", cutAway},
           {"contact_lines", mesh.contactLines},
+          {"seam_vertices", seamVertices(mesh)},
           {"full_matrix", "not built (progressive path)"}};
 }
 
