@@ -177,6 +177,7 @@ struct Enclosure {
   bool closed = true;  ///< every edge closes it
   bool solid = false;  ///< some contact's solid side faces it
   std::set<int> by;  ///< contacts whose solid side faces f
+  std::set<int> covers;  ///< cover lines round it
 };
 
 /// Whether contact c, which runs along h, has its solid side towards h's face (on h's left).
@@ -197,6 +198,10 @@ void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enc
     for (int data : h->curve().data()) {
       ring = ring || data == kRingEdge;
       if (data == kRingEdge) continue;
+      if (contacts[size_t(data)].cover) {
+        e.covers.insert(data);
+        continue;
+      }
       standing = true;
       if (solidTowards(h, contacts[size_t(data)])) towards = true, e.by.insert(data);
     }
@@ -239,7 +244,8 @@ glm::dvec2 deepPointIn(Face f) {
 /// inside a solid are left out and recorded in `removed`.
 KeptFaces classifyFaces(const Arrangement& arr, const std::vector<std::vector<EK::Point_2>>& rings,
                         const std::vector<ContactLine2>& contacts, const InsideSolid& insideSolid,
-                        std::vector<ContactCut::Removed>& removed) {
+                        const InsideSolid& covered, std::vector<ContactCut::Removed>& removed) {
+  const bool covers = covered && std::any_of(contacts.begin(), contacts.end(), [](const auto& c) { return c.cover; });
   KeptFaces kept;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded() || !insideRings(rings, pointIn(f))) {
@@ -247,6 +253,11 @@ KeptFaces classifyFaces(const Arrangement& arr, const std::vector<std::vector<EK
       continue;
     }
     const Enclosure e = enclosureOf(f, contacts);
+    if (covers && covered(deepPointIn(f))) {  // under a surface lying on this one
+      kept[f] = false;
+      removed.push_back({faceArea(f), std::vector<int>(e.covers.begin(), e.covers.end())});
+      continue;
+    }
     const bool hidden = e.closed && e.solid && insideSolid(deepPointIn(f));
     kept[f] = !hidden;
     if (hidden) removed.push_back({faceArea(f), std::vector<int>(e.by.begin(), e.by.end())});
@@ -318,7 +329,7 @@ void addKeptLines(const Arrangement& arr, KeptFaces& kept, const IdMap& idOf, Co
 }  // namespace
 
 ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
-                            const InsideSolid& insideSolid) {
+                            const InsideSolid& insideSolid, const InsideSolid& covered) {
   // Exact rings (consecutive duplicates dropped) and the curves of the arrangement.
   IdMap idOf;  // points whose id the caller knows
   std::vector<std::vector<EK::Point_2>> rings;
@@ -332,7 +343,7 @@ ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLi
   CGAL::insert(arr, curves.begin(), curves.end());
   // Which faces lie inside the polygon, and which of those the contacts enclose in a solid.
   ContactCut out;
-  KeptFaces kept = classifyFaces(arr, rings, contacts, insideSolid, out.removed);
+  KeptFaces kept = classifyFaces(arr, rings, contacts, insideSolid, covered, out.removed);
   // What is kept: its boundary rings, and the lines inside it.
   addKeptRings(arr, kept, idOf, out);
   addKeptLines(arr, kept, idOf, out);

@@ -19,6 +19,9 @@ struct ContactLine2 {
   /// Which side of a→b the touching surface's back (its solid side) faces: +1 left, -1
   /// right, 0 neither (a two-sided surface).
   int solid = 0;
+  /// An edge of a surface lying on this one, in its plane and facing its way (a rug on a
+  /// floor): what it covers is left out (coveredBy decides), and it closes nothing.
+  bool cover = false;
 };
 
 /// The polygon cut along the contact lines.
@@ -38,7 +41,8 @@ struct ContactCut {
   std::vector<Removed> removed;
 };
 
-/// Whether a point of the polygon's plane (in its 2D frame) lies inside a solid.
+/// Whether a point of the polygon's plane (in its 2D frame) lies inside a solid; or, as
+/// `covered`, under a surface lying on the polygon.
 using InsideSolid = std::function<bool(const glm::dvec2&)>;
 
 /// Cuts `polygon` along `contacts` and leaves out every part of it that the contacts enclose
@@ -51,7 +55,9 @@ using InsideSolid = std::function<bool(const glm::dvec2&)>;
 /// Known limits of this rule: a footprint split by another contact line (overlapping blocks,
 /// a panel through it) keeps the parts not enclosed on every side, and a footprint over
 /// several coplanar pieces (a floor of many faces) is not enclosed in any one of them.
+/// With cover lines among the contacts, every part that `covered` says lies under a surface
+/// lying on the polygon is left out too.
 ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
-                            const InsideSolid& insideSolid);
+                            const InsideSolid& insideSolid, const InsideSolid& covered = {});
 
 }  // namespace rad

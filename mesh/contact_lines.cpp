@@ -238,12 +238,28 @@ class PieceBoxes {
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts
 /// come from the uncut pieces), their boxes padded by the tolerance, and the points made.
+/// The area of each surface: its pieces' areas summed.
+std::vector<double> surfaceAreas(const Scene& scene, const PointTable& table, const std::vector<Piece>& pieces) {
+  std::vector<double> area(scene.surfaces.size(), 0.0);
+  for (const Piece& piece : pieces)
+    for (const auto& ring : piece.rings) {
+      double twice = 0;
+      for (size_t k = 0; k < ring.size(); ++k) {
+        const auto [a, b] = projectedEdge(table, piece, ring, k);
+        twice += a.x * b.y - b.x * a.y;
+      }
+      area[size_t(piece.surface)] += 0.5 * twice;  // holes wind the other way
+    }
+  for (double& a : area) a = std::abs(a);
+  return area;
+}
+
 struct Context {
   Context(const Scene& scene, PointTable& table, const std::vector<Piece>& pieces)
       : scene(scene), table(table), original(pieces),
         tolerance(kContactTolerance * scene.diagonal()),
         box(paddedBoxes(table, pieces, tolerance)), boxes(box), made(tolerance),
-        stamp(pieces.size(), -1) {}
+        stamp(pieces.size(), -1), surfaceArea(surfaceAreas(scene, table, pieces)) {}
 
   const Scene& scene;
   PointTable& table;
@@ -254,6 +270,7 @@ struct Context {
   SpatialHash made;        ///< points the cuts made, in cells of the tolerance
   std::vector<int> stamp;  ///< the last piece each piece was a candidate for
   std::optional<SolidProbe> probe;  ///< rays against the uncut pieces, made when first asked
+  const std::vector<double> surfaceArea;  ///< per surface
 
   /// Whether point q of piece r's plane (in its frame), just off its lit side, is inside a solid.
   bool insideSolid(size_t r, const glm::dvec2& q) {
@@ -333,17 +350,87 @@ ContactLine2 contactLine(Context& cx, size_t r, size_t s, const Contact3& c) {
   return line;
 }
 
-/// The contact lines on piece r, with the surface each comes from.
+/// The contact lines on piece r, with the surface each comes from, and the pieces lying on it.
 struct Lines {
   std::vector<ContactLine2> lines;
   std::vector<int> from;
+  std::vector<int> covering;  ///< pieces lying on r that cover what is under them
 };
 
-/// Where other pieces touch or pierce piece r.
+/// Whether q, a point of s's plane, lies inside piece s farther than `tolerance` from its border.
+bool wellInside(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
+  const glm::dvec2 x = s.frame.project(q);
+  bool inside = false;
+  for (const auto& ring : s.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const auto [a, b] = projectedEdge(table, s, ring, k);
+      if (segmentDistance(x, a, b) <= tolerance) return false;
+      if (crossesRay(a, b, x)) inside = !inside;
+    }
+  return inside;
+}
+
+/// Whether coplanar pieces r and s overlap: a corner of either, or the centroid of s's outline,
+/// lies well inside the other (two equal faces share only their centroid; a lamp filling a
+/// ceiling's hole has its corners on the hole's border and its centroid in the hole). Edges that
+/// cross with no corner inside (a cross of two strips) go unseen.
+bool overlap(const Context& cx, size_t r, size_t s) {
+  const Piece &pr = cx.original[r], &ps = cx.original[s];
+  glm::dvec3 centroid(0.0);
+  for (int id : ps.rings[0]) centroid += cx.table[id] / double(ps.rings[0].size());
+  if (wellInside(cx.table, pr, centroid, cx.tolerance)) return true;
+  for (const auto& ring : ps.rings)
+    for (int id : ring)
+      if (wellInside(cx.table, pr, cx.table[id], cx.tolerance)) return true;
+  for (const auto& ring : pr.rings)
+    for (int id : ring)
+      if (wellInside(cx.table, ps, cx.table[id], cx.tolerance)) return true;
+  return false;
+}
+
+/// Whether piece s lies on piece r, in its plane (within the tolerance) and facing its way, and
+/// covers it where they overlap: the one in front wins, and between two in one plane, what
+/// lies on a surface is the smaller (a rug on a floor, a painting on a wall; a floor of many
+/// tiles is one surface, so it is the rug that wins); of two alike (a duplicated face), the
+/// later in the file.
+bool covers(const Context& cx, size_t s, size_t r) {
+  const Piece &pr = cx.original[r], &ps = cx.original[s];
+  if (glm::dot(pr.frame.normal, ps.frame.normal) < 1 - 1e-9) return false;
+  const auto& surfaces = cx.scene.surfaces;
+  if (surfaces[size_t(pr.surface)].twoSided && !surfaces[size_t(ps.surface)].twoSided) return false;  // r's back shows
+  for (const auto& ring : ps.rings)
+    for (int id : ring)
+      if (std::abs(glm::dot(pr.frame.normal, cx.table[id] - pr.frame.origin)) > cx.tolerance) return false;
+  if (!overlap(cx, r, s)) return false;  // a lamp filling the ceiling's hole covers nothing
+  const double ar = cx.surfaceArea[size_t(pr.surface)], as = cx.surfaceArea[size_t(ps.surface)];
+  if (as != ar) return as < ar;
+  return ps.surface != pr.surface ? ps.surface > pr.surface : s > r;
+}
+
+/// The edges of piece s (lying on r) as cover lines in r's frame.
+void addCoverLines(const Context& cx, size_t r, size_t s, Lines& out) {
+  const Piece& ps = cx.original[s];
+  const PlaneFrame& frame = cx.original[r].frame;
+  for (const auto& ring : ps.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      ContactLine2 line;
+      line.aId = ring[k];
+      line.bId = ring[(k + 1) % ring.size()];
+      line.a = frame.project(cx.table[line.aId]);
+      line.b = frame.project(cx.table[line.bId]);
+      line.cover = true;
+      out.lines.push_back(line);
+      out.from.push_back(ps.surface);
+    }
+  out.covering.push_back(int(s));
+}
+
+/// Where other pieces touch or pierce piece r, or lie on it.
 Lines contactLinesOf(Context& cx, size_t r) {
   Lines out;
   const bool twoSided = cx.scene.surfaces[size_t(cx.original[r].surface)].twoSided;
-  for (int s : candidates(cx, r))
+  for (int s : candidates(cx, r)) {
+    if (covers(cx, size_t(s), r)) addCoverLines(cx, r, size_t(s), out);
     for (const Contact3& c : contactsOf(cx.table, cx.original[r], twoSided, cx.original[size_t(s)], cx.tolerance)) {
       // Only lines that come near the piece (a floor's plane crosses every face of a mesh
       // standing on it, far from most of them).
@@ -351,6 +438,7 @@ Lines contactLinesOf(Context& cx, size_t r) {
       out.lines.push_back(contactLine(cx, r, size_t(s), c));
       out.from.push_back(cx.original[size_t(s)].surface);
     }
+  }
   return out;
 }
 
@@ -379,6 +467,7 @@ bool solidInwards(const Context& cx, size_t r, const ContactLine2& line) {
 /// cut nothing; unless one has its solid side inwards (the piece may lie under a block),
 /// no arrangement is needed.
 bool cutsNothing(const Context& cx, size_t r, const std::vector<ContactLine2>& lines) {
+  if (std::any_of(lines.begin(), lines.end(), [](const auto& l) { return l.cover; })) return false;
   return std::all_of(lines.begin(), lines.end(), [&](const auto& l) { return alongEdge(cx, r, l); }) &&
          std::none_of(lines.begin(), lines.end(), [&](const auto& l) { return solidInwards(cx, r, l); });
 }
@@ -491,8 +580,13 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     if (cutsNothing(cx, r, found.lines)) continue;
     // Cut it along them, leaving out what they enclose.
     const Polygon2 poly = projectedRings(table, pieces[r]);
+    const auto covered = [&](const glm::dvec2& q) {
+      const glm::dvec3 p = cx.original[r].frame.lift(q);
+      return std::any_of(found.covering.begin(), found.covering.end(),
+                         [&](int s) { return insideOrOn(cx.table, cx.original[size_t(s)], p, 0.0); });
+    };
     const ContactCut cut = cutAlongContacts(poly, found.lines,
-                                            [&](const glm::dvec2& q) { return cx.insideSolid(r, q); });
+                                            [&](const glm::dvec2& q) { return cx.insideSolid(r, q); }, covered);
     // Take back what is kept, as point ids, and say what was left out.
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);

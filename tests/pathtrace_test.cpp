@@ -3,6 +3,7 @@
 // and the honesty of its standard errors (their coverage); and the true error measured against
 // it (radiosity/true_error) against the true error measured against the exact answer.
 #include <cmath>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -117,6 +118,21 @@ TEST(ReferenceTest, PointsInANarrowGapAreLocated) {
   // A point facing a surface's back has no surface there.
   SurfacePoint below{{0.5, -0.0001, 0.5}, {0, -1, 0}, -1, ""};
   EXPECT_FALSE(locatePoint(traced, below, 0.00015));
+}
+
+/// Surfaces lying on each other in one plane (a rug on a floor that is there twice): a ray meets
+/// the one in front, as the mesher keeps it, the smaller surface, and of two alike the later,
+/// wherever it comes down; not whichever the ray structure met first.
+TEST(ReferenceTest, RaysMeetTheSurfaceInFrontOfCoplanarOnes) {
+  const Scene scene = loadScene(test::kData + "piercing/faces_on_faces.json");
+  const TraceScene traced(scene);
+  auto surfaceBelow = [&](double x, double z) {
+    const TraceHit hit = traced.intersect(traced.toLocal({x, 1.0, z}), {0, -1, 0}, 1.0);
+    return hit.triangle < 0 ? std::string("nothing") : scene.surfaces[size_t(traced.triangle(hit.triangle).surface)].name;
+  };
+  for (double x : {-0.9, -0.3, 0.0, 0.4, 0.95})
+    for (double z : {-0.9, 0.0, 0.7}) EXPECT_EQ(surfaceBelow(x, z), "rug") << x << ", " << z;
+  for (double x : {-1.9, -1.2, 1.5}) EXPECT_EQ(surfaceBelow(x, 0.3), "floor_again") << x;
 }
 
 TEST(ReferenceTest, FurnaceIsExactAtEveryPoint) {

@@ -129,5 +129,31 @@ TEST(PiercingTest, FrameThroughAPaintingAtDefaults) {
     EXPECT_LE(std::abs(test::trueErrorOf(*s, reference, tag).worst), kThinPenumbraWorst) << tag;
 }
 
+/// Faces lying on faces (tests/data/piercing/faces_on_faces.json: a 2 × 2 m rug on a floor
+/// that the file has twice): where they overlap the one in front wins (the smaller surface; of
+/// two alike, the later in the file) and what it covers is left out, so nothing ties in depth
+/// with it (no z-fighting in a hemicube or the viewer).
+TEST(PiercingTest, FacesLyingOnFacesLeaveOutWhatTheyCover) {
+  Scene scene = loadSceneToSolve(kPiercing + "faces_on_faces.json");
+  const Settings settings = resolveSettings(scene, SolverBlock{});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
+  auto area = [&](const char* name) { return meshed.mesh.surfaces[size_t(surfaceNamed(meshed.scene, name))].area; };
+  EXPECT_EQ(meshed.mesh.surfaces[size_t(surfaceNamed(meshed.scene, "floor"))].elements, 0);
+  EXPECT_NEAR(area("floor_again"), 16.0 - 4.0, 1e-9);
+  EXPECT_NEAR(area("rug"), 4.0, 1e-9);
+  double cut = 0;
+  for (const CutAway& c : meshed.mesh.cutAway) cut += c.area;
+  EXPECT_NEAR(cut, 16.0 + 4.0, 1e-9);
+}
+
+/// The same at defaults, 2, 5 and 30 cm either side of the rug's edge: the reference's rays
+/// meet the same surfaces (measured 0.5 % RMS; 1.4 % against a reference whose rays met
+/// whichever of the coplanar faces came first).
+TEST(PiercingTest, FacesLyingOnFacesAtDefaults) {
+  const auto s = test::solveLikeCli(kPiercing + "faces_on_faces.json");
+  const std::string reference = kPiercing + "faces_on_faces_reference.csv";
+  for (const char* tag : {"floor", "rug"}) EXPECT_LE(test::trueError(*s, reference, tag), kNearLineRms) << tag;
+}
+
 }  // namespace
 }  // namespace rad

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 #include <embree3/rtcore.h>
@@ -114,6 +116,7 @@ TraceScene::TraceScene(const Scene& scene) : scene_(scene) {
   fitBox();
   for (size_t s = 0; s < scene.surfaces.size(); ++s)
     for (const auto& polygon : scene.surfaces[s].polygons) addPolygon(polygon, int(s));
+  orderCoplanar();
   buildLights();
   buildRays();
 }
@@ -186,6 +189,33 @@ void TraceScene::addTriangle(TraceTriangle tri) {
   if (!(tri.area > 0)) return;
   tri.normal = c / (2 * tri.area);
   triangles_.push_back(tri);
+}
+
+void TraceScene::orderCoplanar() {
+  // Triangles by plane: the normal to 1e-6 and the offset to 1e-6 of the scene's size.
+  using Key = std::array<long long, 4>;
+  auto keyOf = [](const TraceTriangle& t, long long offsetCell) {
+    return Key{std::llround(t.normal.x * 1e6), std::llround(t.normal.y * 1e6), std::llround(t.normal.z * 1e6), offsetCell};
+  };
+  auto offsetCell = [](const TraceTriangle& t) { return std::llround(glm::dot(t.normal, t.a) * 1e6); };
+  std::map<Key, std::set<int>> surfacesIn;  // plane → surfaces with triangles in it
+  for (const TraceTriangle& t : triangles_) surfacesIn[keyOf(t, offsetCell(t))].insert(t.surface);
+  std::vector<double> area(scene_.surfaces.size(), 0.0);
+  for (const TraceTriangle& t : triangles_) area[size_t(t.surface)] += t.area;
+  // Front first: smaller area, then later in the file.
+  auto inFront = [&](int a, int b) { return area[size_t(a)] != area[size_t(b)] ? area[size_t(a)] < area[size_t(b)] : a > b; };
+  for (TraceTriangle& t : triangles_) {
+    const long long cell = offsetCell(t);
+    std::set<int> planeMates;  // the surfaces in its plane (and the neighbouring offset cells)
+    for (long long c = cell - 1; c <= cell + 1; ++c) {
+      auto it = surfacesIn.find(keyOf(t, c));
+      if (it != surfacesIn.end()) planeMates.insert(it->second.begin(), it->second.end());
+    }
+    if (planeMates.size() < 2) continue;
+    const long behind = std::count_if(planeMates.begin(), planeMates.end(), [&](int s) { return s != t.surface && inFront(s, t.surface); });
+    const glm::dvec3 back = -double(behind) * kCoplanarStep * t.normal;
+    t.a += back, t.b += back, t.c += back;
+  }
 }
 
 int TraceScene::addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,

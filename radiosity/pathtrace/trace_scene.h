@@ -16,6 +16,9 @@ namespace rad::pathtrace {
 /// Rays start this far (normalised units: the scene's size is 1) off their surface: about 170
 /// units in the last place of the single-precision coordinates Embree sees.
 constexpr double kRayOffset = 1e-5;
+/// Surfaces in one plane are put this far apart (normalised units): four units in the last
+/// place of the single-precision coordinates near the scene's edge, well inside kRayOffset.
+constexpr double kCoplanarStep = 2.4e-7;
 
 /// One triangle of a surface polygon, in normalised coordinates.
 struct TraceTriangle {
@@ -105,6 +108,12 @@ class TraceScene {
   /// Adds the triangle (corners, surface, holes set) with its area and unit normal, unless
   /// it has no area.
   void addTriangle(TraceTriangle tri);
+  /// Surfaces lying on each other in one plane, facing one way (a rug on a floor, a duplicated
+  /// face): the one in front must win the ray, not whichever Embree meets first. As the mesher
+  /// decides (mesh/contact_lines.cpp, independently written): the smaller surface lies on the
+  /// larger, and of two alike the later in the file. The others in that plane are moved back
+  /// along their normals, kCoplanarStep per place behind the front one.
+  void orderCoplanar();
   /// Adds the polygon's holes in its plane frame (origin, u, v) to holes_; returns their index.
   int addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,
                const glm::dvec3& v);
