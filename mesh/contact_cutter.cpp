@@ -32,8 +32,10 @@ using IdMap = std::map<std::pair<double, double>, int>;
 /// Whether each face of the arrangement is kept.
 using KeptFaces = std::map<Face, bool>;
 
-/// Curve data: contact lines by index, the polygon's own edges by this.
+/// Curve data: contact lines by index, the polygon's own edges by these: an edge it shares with
+/// a face of its own surface in its plane (inner: a floor's diagonal), or any other.
 constexpr int kRingEdge = -1;
+constexpr int kInnerEdge = -2;
 
 /// The point as an exact one, and back (rounded).
 EK::Point_2 exact(const glm::dvec2& p) { return {p.x, p.y}; }
@@ -153,10 +155,19 @@ std::vector<EK::Point_2> exactRing(const Polygon2& polygon, size_t r, IdMap& idO
   return ring;
 }
 
-/// The ring's edges as curves (none for fewer than three points).
-void addRingCurves(const std::vector<EK::Point_2>& ring, std::vector<Traits::Curve_2>& curves) {
-  for (size_t k = 0; k < ring.size() && ring.size() >= 3; ++k)
-    curves.emplace_back(Segments::Curve_2(ring[k], ring[(k + 1) % ring.size()]), kRingEdge);
+/// Ring r's edges as curves (none for fewer than three points), inner ones (`inner`: id pairs,
+/// lower first) marked so.
+void addRingCurves(const Polygon2& polygon, size_t r, size_t points, const std::set<std::pair<int, int>>& inner,
+                   std::vector<Traits::Curve_2>& curves) {
+  if (points < 3) return;
+  const auto& ring = polygon.rings[r];
+  const auto& ids = polygon.ids[r];
+  for (size_t k = 0; k < ring.size(); ++k) {
+    const size_t next = (k + 1) % ring.size();
+    if (exact(ring[k]) == exact(ring[next])) continue;
+    const bool isInner = ids[k] >= 0 && ids[next] >= 0 && inner.count(std::minmax(ids[k], ids[next]));
+    curves.emplace_back(Segments::Curve_2(exact(ring[k]), exact(ring[next])), isInner ? kInnerEdge : kRingEdge);
+  }
 }
 
 /// The contact lines as curves, with their indices as data (points apart); their ends' ids
@@ -194,10 +205,11 @@ void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enc
   auto h = start;
   do {
     if (h->twin()->face() == f) continue;  // a line inside the face
-    bool ring = false, standing = false, towards = false;
+    bool ring = false, inner = false, standing = false, towards = false;
     for (int data : h->curve().data()) {
-      ring = ring || data == kRingEdge;
-      if (data == kRingEdge) continue;
+      ring = ring || data < 0;
+      inner = inner || data == kInnerEdge;
+      if (data < 0) continue;
       if (contacts[size_t(data)].cover) {
         e.covers.insert(data);
         continue;
@@ -206,7 +218,7 @@ void noteCycle(Face f, Ccb start, const std::vector<ContactLine2>& contacts, Enc
       if (solidTowards(h, contacts[size_t(data)])) towards = true, e.by.insert(data);
     }
     e.solid = e.solid || towards;
-    e.closed = e.closed && (towards || (ring && standing));
+    e.closed = e.closed && (towards || (ring && standing) || inner);
   } while (++h != start);
 }
 
@@ -279,7 +291,7 @@ bool keptBoundary(KeptFaces& kept, Halfedge h) { return kept[h->face()] && !kept
 /// Whether h runs along contact lines only (none of the polygon's own edges).
 bool isContactEdge(Halfedge h) {
   const auto& data = h->curve().data();
-  return std::find(data.begin(), data.end(), kRingEdge) == data.end();
+  return std::none_of(data.begin(), data.end(), [](int d) { return d < 0; });
 }
 
 /// The kept boundary edge after e, around e's target through the kept faces.
@@ -329,14 +341,15 @@ void addKeptLines(const Arrangement& arr, KeptFaces& kept, const IdMap& idOf, Co
 }  // namespace
 
 ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
-                            const InsideSolid& insideSolid, const InsideSolid& covered) {
+                            const InsideSolid& insideSolid, const InsideSolid& covered,
+                            const std::set<std::pair<int, int>>& innerEdges) {
   // Exact rings (consecutive duplicates dropped) and the curves of the arrangement.
   IdMap idOf;  // points whose id the caller knows
   std::vector<std::vector<EK::Point_2>> rings;
   std::vector<Traits::Curve_2> curves;
   for (size_t r = 0; r < polygon.rings.size(); ++r) {
     rings.push_back(exactRing(polygon, r, idOf));
-    addRingCurves(rings.back(), curves);
+    addRingCurves(polygon, r, rings.back().size(), innerEdges, curves);
   }
   addContactCurves(contacts, idOf, curves);
   Arrangement arr;

@@ -3,7 +3,9 @@
 // leaving out what those surfaces enclose. The CGAL implementation (2D arrangements, exact
 // constructions) stays behind this header.
 #include <functional>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -52,12 +54,15 @@ using InsideSolid = std::function<bool(const glm::dvec2&)>;
 /// a corner; but also a doorway's jamb between the wall's two faces). Inside a solid:
 /// `insideSolid` says so at a point inside the part (the footprint, not the jamb). Contact lines with
 /// kept parts on both sides stay in the kept polygon as lines (a board resting on a wall).
-/// Known limits of this rule: a footprint split by another contact line (overlapping blocks,
-/// a panel through it) keeps the parts not enclosed on every side, and a footprint over
-/// several coplanar pieces (a floor of many faces) is not enclosed in any one of them.
+/// An edge the polygon shares with another face of its surface in its plane (`innerEdges`, the
+/// polygon's ids, lower first: a floor's diagonal) closes a part too, so that a footprint over
+/// several coplanar pieces is enclosed in each. Known limit of this rule: a footprint split by
+/// another contact line (overlapping blocks, a panel through it) keeps the parts not enclosed
+/// on every side.
 /// With cover lines among the contacts, every part that `covered` says lies under a surface
 /// lying on the polygon is left out too.
 ContactCut cutAlongContacts(const Polygon2& polygon, const std::vector<ContactLine2>& contacts,
-                            const InsideSolid& insideSolid, const InsideSolid& covered = {});
+                            const InsideSolid& insideSolid, const InsideSolid& covered = {},
+                            const std::set<std::pair<int, int>>& innerEdges = {});
 
 }  // namespace rad

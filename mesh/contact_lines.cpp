@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -238,6 +240,15 @@ class PieceBoxes {
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts
 /// come from the uncut pieces), their boxes padded by the tolerance, and the points made.
+/// The pieces whose rings have each edge (point ids, lower first).
+std::map<std::pair<int, int>, std::vector<int>> ringEdgeUsers(const std::vector<Piece>& pieces) {
+  std::map<std::pair<int, int>, std::vector<int>> users;
+  for (size_t p = 0; p < pieces.size(); ++p)
+    for (const auto& ring : pieces[p].rings)
+      for (size_t k = 0; k < ring.size(); ++k) users[std::minmax(ring[k], ring[(k + 1) % ring.size()])].push_back(int(p));
+  return users;
+}
+
 /// The area of each surface: its pieces' areas summed.
 std::vector<double> surfaceAreas(const Scene& scene, const PointTable& table, const std::vector<Piece>& pieces) {
   std::vector<double> area(scene.surfaces.size(), 0.0);
@@ -259,7 +270,8 @@ struct Context {
       : scene(scene), table(table), original(pieces),
         tolerance(kContactTolerance * scene.diagonal()),
         box(paddedBoxes(table, pieces, tolerance)), boxes(box), made(tolerance),
-        stamp(pieces.size(), -1), surfaceArea(surfaceAreas(scene, table, pieces)) {}
+        stamp(pieces.size(), -1), surfaceArea(surfaceAreas(scene, table, pieces)),
+        edgeUsers(ringEdgeUsers(pieces)) {}
 
   const Scene& scene;
   PointTable& table;
@@ -271,6 +283,8 @@ struct Context {
   std::vector<int> stamp;  ///< the last piece each piece was a candidate for
   std::optional<SolidProbe> probe;  ///< rays against the uncut pieces, made when first asked
   const std::vector<double> surfaceArea;  ///< per surface
+  /// The pieces whose rings have each edge (point ids, lower first).
+  const std::map<std::pair<int, int>, std::vector<int>> edgeUsers;
 
   /// Whether point q of piece r's plane (in its frame), just off its lit side, is inside a solid.
   bool insideSolid(size_t r, const glm::dvec2& q) {
@@ -423,6 +437,23 @@ void addCoverLines(const Context& cx, size_t r, size_t s, Lines& out) {
       out.from.push_back(ps.surface);
     }
   out.covering.push_back(int(s));
+}
+
+/// The edges of piece r's rings that it shares with another piece of its surface in its plane,
+/// facing its way (a floor of two triangles: the diagonal).
+std::set<std::pair<int, int>> innerEdgesOf(const Context& cx, size_t r) {
+  std::set<std::pair<int, int>> inner;
+  const Piece& pr = cx.original[r];
+  for (const auto& ring : pr.rings)
+    for (size_t k = 0; k < ring.size(); ++k) {
+      const auto edge = std::minmax(ring[k], ring[(k + 1) % ring.size()]);
+      for (int s : cx.edgeUsers.at(edge)) {
+        const Piece& ps = cx.original[size_t(s)];
+        if (size_t(s) != r && ps.surface == pr.surface && glm::dot(ps.frame.normal, pr.frame.normal) > 1 - 1e-9)
+          inner.insert(edge);
+      }
+    }
+  return inner;
 }
 
 /// Where other pieces touch or pierce piece r, or lie on it.
@@ -586,7 +617,8 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
                          [&](int s) { return insideOrOn(cx.table, cx.original[size_t(s)], p, 0.0); });
     };
     const ContactCut cut = cutAlongContacts(poly, found.lines,
-                                            [&](const glm::dvec2& q) { return cx.insideSolid(r, q); }, covered);
+                                            [&](const glm::dvec2& q) { return cx.insideSolid(r, q); }, covered,
+                                            innerEdgesOf(cx, r));
     // Take back what is kept, as point ids, and say what was left out.
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);

@@ -155,5 +155,22 @@ TEST(PiercingTest, FacesLyingOnFacesAtDefaults) {
   for (const char* tag : {"floor", "rug"}) EXPECT_LE(test::trueError(*s, reference, tag), kNearLineRms) << tag;
 }
 
+/// A box standing on a floor made of two triangles whose diagonal runs under it
+/// (tests/data/piercing/box_on_split_floor.json): its footprint is left out of both, each half
+/// enclosed by the box's sides and the diagonal the two triangles share.
+TEST(PiercingTest, FootprintOverTwoFacesOfAFloorIsLeftOut) {
+  Scene scene = loadSceneToSolve(kPiercing + "box_on_split_floor.json");
+  const Settings settings = resolveSettings(scene, SolverBlock{});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
+  const int floor = surfaceNamed(meshed.scene, "floor");
+  double cut = 0;
+  int parts = 0;
+  for (const CutAway& c : meshed.mesh.cutAway)
+    if (c.surface == floor) cut += c.area, ++parts;
+  EXPECT_EQ(parts, 2);
+  EXPECT_NEAR(cut, 1.0, 1e-9);
+  EXPECT_NEAR(meshed.mesh.surfaces[size_t(floor)].area, 16.0 - 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace rad
