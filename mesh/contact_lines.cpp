@@ -409,7 +409,7 @@ bool overlap(const Context& cx, size_t r, size_t s) {
 /// later in the file.
 bool covers(const Context& cx, size_t s, size_t r) {
   const Piece &pr = cx.original[r], &ps = cx.original[s];
-  if (glm::dot(pr.frame.normal, ps.frame.normal) < 1 - 1e-9) return false;
+  if (!(glm::dot(pr.frame.normal, ps.frame.normal) >= 1 - 1e-9)) return false;  // NaN: not coplanar
   const auto& surfaces = cx.scene.surfaces;
   if (surfaces[size_t(pr.surface)].twoSided && !surfaces[size_t(ps.surface)].twoSided) return false;  // r's back shows
   for (const auto& ring : ps.rings)

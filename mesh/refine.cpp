@@ -170,18 +170,20 @@ class Bisector {
     for (auto [a2, b2] : twinsOf(a, b)) splitEdgeBetween(a2, b2);
   }
 
-  /// The other edges between the points of a and b (vertices of other surfaces at them).
+  /// The other edges between the points of a and b (vertices of other surfaces at them, or the
+  /// other side's of a seam).
   std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twinsOf(Mesh::VertexHandle a,
                                                                           Mesh::VertexHandle b) const {
     std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twins;
     auto [lo, hi] = at_.equal_range(m_.point(a));
     for (auto it = lo; it != hi; ++it) {
       Mesh::VertexHandle a2(it->second);
-      if (a2 == a) continue;
       auto [lo2, hi2] = at_.equal_range(m_.point(b));
       for (auto jt = lo2; jt != hi2; ++jt) {
         Mesh::VertexHandle b2(jt->second);
-        if (b2 != b && m_.find_halfedge(a2, b2).is_valid()) twins.emplace_back(a2, b2);
+        // Either end may be the same vertex: where a seam ends inside a surface, its last
+        // vertex is both sides' own.
+        if ((a2 != a || b2 != b) && m_.find_halfedge(a2, b2).is_valid()) twins.emplace_back(a2, b2);
       }
     }
     return twins;

@@ -9,6 +9,7 @@
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "radiosity/pathtrace/ear_clip.h"
 #include "radiosity/pathtrace/tangent_frame.h"
@@ -192,28 +193,40 @@ void TraceScene::addTriangle(TraceTriangle tri) {
 }
 
 void TraceScene::orderCoplanar() {
-  // Triangles by plane: the normal to 1e-6 and the offset to 1e-6 of the scene's size.
+  // Triangles by plane: the normal to 1e-5, the offset in cells of 1e-5 of the scene's size
+  // (the mesher's contact tolerance), a plane's neighbouring cells looked at too.
   using Key = std::array<long long, 4>;
-  auto keyOf = [](const TraceTriangle& t, long long offsetCell) {
-    return Key{std::llround(t.normal.x * 1e6), std::llround(t.normal.y * 1e6), std::llround(t.normal.z * 1e6), offsetCell};
+  auto keyOf = [](const TraceTriangle& t, long long cell) {
+    return Key{std::llround(t.normal.x * 1e5), std::llround(t.normal.y * 1e5), std::llround(t.normal.z * 1e5), cell};
   };
-  auto offsetCell = [](const TraceTriangle& t) { return std::llround(glm::dot(t.normal, t.a) * 1e6); };
-  std::map<Key, std::set<int>> surfacesIn;  // plane → surfaces with triangles in it
-  for (const TraceTriangle& t : triangles_) surfacesIn[keyOf(t, offsetCell(t))].insert(t.surface);
+  auto cellOf = [](const TraceTriangle& t) { return std::llround(glm::dot(t.normal, t.a) * 1e5); };
+  struct Extent {
+    glm::dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};
+  };
+  std::map<Key, std::map<int, Extent>> inPlane;  // plane → its surfaces, each with its box there
+  for (const TraceTriangle& t : triangles_) {
+    Extent& e = inPlane[keyOf(t, cellOf(t))][t.surface];
+    e.lo = glm::min(e.lo, glm::min(t.a, glm::min(t.b, t.c)));
+    e.hi = glm::max(e.hi, glm::max(t.a, glm::max(t.b, t.c)));
+  }
   std::vector<double> area(scene_.surfaces.size(), 0.0);
   for (const TraceTriangle& t : triangles_) area[size_t(t.surface)] += t.area;
   // Front first: smaller area, then later in the file.
   auto inFront = [&](int a, int b) { return area[size_t(a)] != area[size_t(b)] ? area[size_t(a)] < area[size_t(b)] : a > b; };
+  auto meet = [](const Extent& x, const Extent& y) {
+    return glm::all(glm::lessThanEqual(x.lo, y.hi + kRayOffset)) && glm::all(glm::lessThanEqual(y.lo, x.hi + kRayOffset));
+  };
   for (TraceTriangle& t : triangles_) {
-    const long long cell = offsetCell(t);
-    std::set<int> planeMates;  // the surfaces in its plane (and the neighbouring offset cells)
+    const long long cell = cellOf(t);
+    const Extent& own = inPlane[keyOf(t, cell)][t.surface];
+    std::set<int> before;  // surfaces in its plane, in front of it, whose boxes there meet its own
     for (long long c = cell - 1; c <= cell + 1; ++c) {
-      auto it = surfacesIn.find(keyOf(t, c));
-      if (it != surfacesIn.end()) planeMates.insert(it->second.begin(), it->second.end());
+      auto it = inPlane.find(keyOf(t, c));
+      if (it == inPlane.end()) continue;
+      for (const auto& [s, extent] : it->second)
+        if (s != t.surface && inFront(s, t.surface) && meet(own, extent)) before.insert(s);
     }
-    if (planeMates.size() < 2) continue;
-    const long behind = std::count_if(planeMates.begin(), planeMates.end(), [&](int s) { return s != t.surface && inFront(s, t.surface); });
-    const glm::dvec3 back = -double(behind) * kCoplanarStep * t.normal;
+    const glm::dvec3 back = -double(std::min<size_t>(before.size(), kMaxCoplanarSteps)) * kCoplanarStep * t.normal;
     t.a += back, t.b += back, t.c += back;
   }
 }

@@ -3,6 +3,7 @@
 // clipping; holes are left out of every hit and light sample by a point-in-ring test), in
 // coordinates normalised to the scene's box, with rays through Embree. Nothing here comes from
 // the patch mesh or the hemicube solver: the reference shares only the scene loader with them.
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -17,8 +18,10 @@ namespace rad::pathtrace {
 /// units in the last place of the single-precision coordinates Embree sees.
 constexpr double kRayOffset = 1e-5;
 /// Surfaces in one plane are put this far apart (normalised units): four units in the last
-/// place of the single-precision coordinates near the scene's edge, well inside kRayOffset.
+/// place of the single-precision coordinates near the scene's edge; at most kMaxCoplanarSteps
+/// of them (1.9e-6), well inside kRayOffset.
 constexpr double kCoplanarStep = 2.4e-7;
+constexpr size_t kMaxCoplanarSteps = 8;
 
 /// One triangle of a surface polygon, in normalised coordinates.
 struct TraceTriangle {
@@ -111,8 +114,8 @@ class TraceScene {
   /// Surfaces lying on each other in one plane, facing one way (a rug on a floor, a duplicated
   /// face): the one in front must win the ray, not whichever Embree meets first. As the mesher
   /// decides (mesh/contact_lines.cpp, independently written): the smaller surface lies on the
-  /// larger, and of two alike the later in the file. The others in that plane are moved back
-  /// along their normals, kCoplanarStep per place behind the front one.
+  /// larger, and of two alike the later in the file. A surface is moved back along its normal
+  /// kCoplanarStep for each in front of it in its plane whose box there meets its own.
   void orderCoplanar();
   /// Adds the polygon's holes in its plane frame (origin, u, v) to holes_; returns their index.
   int addHoles(const Polygon& polygon, const glm::dvec3& origin, const glm::dvec3& u,
