@@ -3,14 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
-#include <set>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
+#include "mesh/coplanar_pieces.h"
 #include "mesh/geometry.h"
 #include "mesh/progress.h"
 #include "mesh/solid_probe.h"
@@ -31,31 +30,6 @@ struct Contact3 {
   glm::dvec3 a, b;
   int aId = -1, bId = -1;
 };
-
-/// Edge k of one of the piece's rings, in the piece's frame.
-std::pair<glm::dvec2, glm::dvec2> projectedEdge(const PointTable& table, const Piece& piece,
-                                                const std::vector<int>& ring, size_t k) {
-  return {piece.frame.project(table[ring[k]]), piece.frame.project(table[ring[(k + 1) % ring.size()]])};
-}
-
-/// Whether the edge from a to b crosses the ray from x along +u (even-odd rule).
-bool crossesRay(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& x) {
-  const glm::dvec2 d = b - a;
-  return (a.y > x.y) != (b.y > x.y) && x.x < a.x + (x.y - a.y) * d.x / d.y;
-}
-
-/// True when q, a point of s's plane, lies inside piece s or within `tolerance` of its border.
-bool insideOrOn(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
-  const glm::dvec2 x = s.frame.project(q);
-  bool inside = false;
-  for (const auto& ring : s.rings)
-    for (size_t k = 0; k < ring.size(); ++k) {
-      const auto [a, b] = projectedEdge(table, s, ring, k);
-      if (segmentDistance(x, a, b) <= tolerance) return true;
-      if (crossesRay(a, b, x)) inside = !inside;
-    }
-  return inside;
-}
 
 /// Whether an edge whose ends lie at signed distances dp and dq from a plane crosses it, each
 /// end farther than `tolerance` from it.
@@ -240,38 +214,12 @@ class PieceBoxes {
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts
 /// come from the uncut pieces), their boxes padded by the tolerance, and the points made.
-/// The pieces whose rings have each edge (point ids, lower first).
-std::map<std::pair<int, int>, std::vector<int>> ringEdgeUsers(const std::vector<Piece>& pieces) {
-  std::map<std::pair<int, int>, std::vector<int>> users;
-  for (size_t p = 0; p < pieces.size(); ++p)
-    for (const auto& ring : pieces[p].rings)
-      for (size_t k = 0; k < ring.size(); ++k) users[std::minmax(ring[k], ring[(k + 1) % ring.size()])].push_back(int(p));
-  return users;
-}
-
-/// The area of each surface: its pieces' areas summed.
-std::vector<double> surfaceAreas(const Scene& scene, const PointTable& table, const std::vector<Piece>& pieces) {
-  std::vector<double> area(scene.surfaces.size(), 0.0);
-  for (const Piece& piece : pieces)
-    for (const auto& ring : piece.rings) {
-      double twice = 0;
-      for (size_t k = 0; k < ring.size(); ++k) {
-        const auto [a, b] = projectedEdge(table, piece, ring, k);
-        twice += a.x * b.y - b.x * a.y;
-      }
-      area[size_t(piece.surface)] += 0.5 * twice;  // holes wind the other way
-    }
-  for (double& a : area) a = std::abs(a);
-  return area;
-}
-
 struct Context {
   Context(const Scene& scene, PointTable& table, const std::vector<Piece>& pieces)
       : scene(scene), table(table), original(pieces),
         tolerance(kContactTolerance * scene.diagonal()),
         box(paddedBoxes(table, pieces, tolerance)), boxes(box), made(tolerance),
-        stamp(pieces.size(), -1), surfaceArea(surfaceAreas(scene, table, pieces)),
-        edgeUsers(ringEdgeUsers(pieces)) {}
+        stamp(pieces.size(), -1), coplanar(scene, table, original, tolerance) {}
 
   const Scene& scene;
   PointTable& table;
@@ -282,9 +230,7 @@ struct Context {
   SpatialHash made;        ///< points the cuts made, in cells of the tolerance
   std::vector<int> stamp;  ///< the last piece each piece was a candidate for
   std::optional<SolidProbe> probe;  ///< rays against the uncut pieces, made when first asked
-  const std::vector<double> surfaceArea;  ///< per surface
-  /// The pieces whose rings have each edge (point ids, lower first).
-  const std::map<std::pair<int, int>, std::vector<int>> edgeUsers;
+  const CoplanarPieces coplanar;  ///< over the uncut pieces
 
   /// Whether point q of piece r's plane (in its frame), just off its lit side, is inside a solid.
   bool insideSolid(size_t r, const glm::dvec2& q) {
@@ -371,56 +317,6 @@ struct Lines {
   std::vector<int> covering;  ///< pieces lying on r that cover what is under them
 };
 
-/// Whether q, a point of s's plane, lies inside piece s farther than `tolerance` from its border.
-bool wellInside(const PointTable& table, const Piece& s, const glm::dvec3& q, double tolerance) {
-  const glm::dvec2 x = s.frame.project(q);
-  bool inside = false;
-  for (const auto& ring : s.rings)
-    for (size_t k = 0; k < ring.size(); ++k) {
-      const auto [a, b] = projectedEdge(table, s, ring, k);
-      if (segmentDistance(x, a, b) <= tolerance) return false;
-      if (crossesRay(a, b, x)) inside = !inside;
-    }
-  return inside;
-}
-
-/// Whether coplanar pieces r and s overlap: a corner of either, or the centroid of s's outline,
-/// lies well inside the other (two equal faces share only their centroid; a lamp filling a
-/// ceiling's hole has its corners on the hole's border and its centroid in the hole). Edges that
-/// cross with no corner inside (a cross of two strips) go unseen.
-bool overlap(const Context& cx, size_t r, size_t s) {
-  const Piece &pr = cx.original[r], &ps = cx.original[s];
-  glm::dvec3 centroid(0.0);
-  for (int id : ps.rings[0]) centroid += cx.table[id] / double(ps.rings[0].size());
-  if (wellInside(cx.table, pr, centroid, cx.tolerance)) return true;
-  for (const auto& ring : ps.rings)
-    for (int id : ring)
-      if (wellInside(cx.table, pr, cx.table[id], cx.tolerance)) return true;
-  for (const auto& ring : pr.rings)
-    for (int id : ring)
-      if (wellInside(cx.table, ps, cx.table[id], cx.tolerance)) return true;
-  return false;
-}
-
-/// Whether piece s lies on piece r, in its plane (within the tolerance) and facing its way, and
-/// covers it where they overlap: the one in front wins, and between two in one plane, what
-/// lies on a surface is the smaller (a rug on a floor, a painting on a wall; a floor of many
-/// tiles is one surface, so it is the rug that wins); of two alike (a duplicated face), the
-/// later in the file.
-bool covers(const Context& cx, size_t s, size_t r) {
-  const Piece &pr = cx.original[r], &ps = cx.original[s];
-  if (!(glm::dot(pr.frame.normal, ps.frame.normal) >= 1 - 1e-9)) return false;  // NaN: not coplanar
-  const auto& surfaces = cx.scene.surfaces;
-  if (surfaces[size_t(pr.surface)].twoSided && !surfaces[size_t(ps.surface)].twoSided) return false;  // r's back shows
-  for (const auto& ring : ps.rings)
-    for (int id : ring)
-      if (std::abs(glm::dot(pr.frame.normal, cx.table[id] - pr.frame.origin)) > cx.tolerance) return false;
-  if (!overlap(cx, r, s)) return false;  // a lamp filling the ceiling's hole covers nothing
-  const double ar = cx.surfaceArea[size_t(pr.surface)], as = cx.surfaceArea[size_t(ps.surface)];
-  if (as != ar) return as < ar;
-  return ps.surface != pr.surface ? ps.surface > pr.surface : s > r;
-}
-
 /// The edges of piece s (lying on r) as cover lines in r's frame.
 void addCoverLines(const Context& cx, size_t r, size_t s, Lines& out) {
   const Piece& ps = cx.original[s];
@@ -439,29 +335,12 @@ void addCoverLines(const Context& cx, size_t r, size_t s, Lines& out) {
   out.covering.push_back(int(s));
 }
 
-/// The edges of piece r's rings that it shares with another piece of its surface in its plane,
-/// facing its way (a floor of two triangles: the diagonal).
-std::set<std::pair<int, int>> innerEdgesOf(const Context& cx, size_t r) {
-  std::set<std::pair<int, int>> inner;
-  const Piece& pr = cx.original[r];
-  for (const auto& ring : pr.rings)
-    for (size_t k = 0; k < ring.size(); ++k) {
-      const auto edge = std::minmax(ring[k], ring[(k + 1) % ring.size()]);
-      for (int s : cx.edgeUsers.at(edge)) {
-        const Piece& ps = cx.original[size_t(s)];
-        if (size_t(s) != r && ps.surface == pr.surface && glm::dot(ps.frame.normal, pr.frame.normal) > 1 - 1e-9)
-          inner.insert(edge);
-      }
-    }
-  return inner;
-}
-
 /// Where other pieces touch or pierce piece r, or lie on it.
 Lines contactLinesOf(Context& cx, size_t r) {
   Lines out;
   const bool twoSided = cx.scene.surfaces[size_t(cx.original[r].surface)].twoSided;
   for (int s : candidates(cx, r)) {
-    if (covers(cx, size_t(s), r)) addCoverLines(cx, r, size_t(s), out);
+    if (cx.coplanar.covers(size_t(s), r)) addCoverLines(cx, r, size_t(s), out);
     for (const Contact3& c : contactsOf(cx.table, cx.original[r], twoSided, cx.original[size_t(s)], cx.tolerance)) {
       // Only lines that come near the piece (a floor's plane crosses every face of a mesh
       // standing on it, far from most of them).
@@ -618,7 +497,7 @@ ContactCuts cutAtContacts(const Scene& scene, PointTable& table, std::vector<Pie
     };
     const ContactCut cut = cutAlongContacts(poly, found.lines,
                                             [&](const glm::dvec2& q) { return cx.insideSolid(r, q); }, covered,
-                                            innerEdgesOf(cx, r));
+                                            cx.coplanar.innerEdges(r));
     // Take back what is kept, as point ids, and say what was left out.
     keepCut(cx, r, cut, pieces[r], out.across);
     recordCutAway(cut, poly, pieces[r].surface, found.from, out.cutAway);

@@ -15,6 +15,7 @@
 #include "mesh/number_text.h"
 #include "mesh/parallel.h"
 #include "mesh/surface_rays.h"
+#include "mesh/union_find.h"
 
 namespace rad {
 namespace {
@@ -136,22 +137,6 @@ void followPath(const ScenePolygons& all, const SurfaceRays& rays, const Emitter
   }
 }
 
-/// Union-find over a surface's polygons.
-class Components {
- public:
-  explicit Components(size_t n) : parent_(n) {
-    for (size_t i = 0; i < n; ++i) parent_[i] = i;
-  }
-  size_t find(size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(size_t a, size_t b) { parent_[find(a)] = find(b); }
-
- private:
-  std::vector<size_t> parent_;
-};
-
 /// The polygons of a surface grouped into consistently wound sheets: two polygons belong together
 /// when they share an edge that they run along in opposite directions (their windings agree
 /// across it). Each polygon's sheet, as the index of one of its polygons.
@@ -166,7 +151,7 @@ std::vector<size_t> windingSheets(const Surface& surface) {
     const Ring& ring = polygons[k].outer;
     for (size_t i = 0; i < ring.size(); ++i) along[{id(ring[i]), id(ring[(i + 1) % ring.size()])}].push_back(k);
   }
-  Components sheets(polygons.size());
+  UnionFind sheets(polygons.size());
   for (const auto& [edge, list] : along)
     if (const auto twin = along.find({edge.second, edge.first}); twin != along.end())
       for (size_t k : list)

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <set>
 #include <unordered_map>
 
@@ -15,6 +14,7 @@
 #include "mesh/patch_growth.h"
 #include "mesh/progress.h"
 #include "mesh/seams.h"
+#include "mesh/union_find.h"
 
 namespace rad::meshing {
 namespace {
@@ -25,14 +25,6 @@ const double kCreaseCos = std::cos(kCreaseAngleDeg * M_PI / 180.0);
 /// A corner of an element: piece, element of the piece, corner (0–2).
 struct Corner {
   int piece = -1, element = -1, corner = -1;
-};
-
-/// A minimal union-find over 0..n-1.
-struct Groups {
-  explicit Groups(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = find(parent[size_t(i)]); }
-  void unite(int a, int b) { parent[size_t(find(a))] = find(b); }
-  std::vector<int> parent;
 };
 
 /// Fills a PatchMesh with the elements of the pieces, patch by patch, one vertex set per
@@ -93,12 +85,12 @@ class Assembler {
     }
     int next = 0;
     for (const auto& [p, corners] : round) {
-      Groups groups(corners.size());
+      UnionFind groups(corners.size());
       for (size_t i = 0; i < corners.size(); ++i)
         for (size_t j = i + 1; j < corners.size(); ++j)
-          if (meetOffSeam(corners[i], corners[j], p)) groups.unite(int(i), int(j));
+          if (meetOffSeam(corners[i], corners[j], p)) groups.join(i, j);
       for (size_t i = 0; i < corners.size(); ++i)
-        sectors_[size_t(corners[i].piece)][size_t(corners[i].element)][size_t(corners[i].corner)] = next + groups.find(int(i));
+        sectors_[size_t(corners[i].piece)][size_t(corners[i].element)][size_t(corners[i].corner)] = next + int(groups.find(i));
       next += int(corners.size());
     }
   }

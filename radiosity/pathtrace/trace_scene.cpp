@@ -210,7 +210,12 @@ void TraceScene::orderCoplanar() {
     e.hi = glm::max(e.hi, glm::max(t.a, glm::max(t.b, t.c)));
   }
   std::vector<double> area(scene_.surfaces.size(), 0.0);
-  for (const TraceTriangle& t : triangles_) area[size_t(t.surface)] += t.area;
+  // Each surface's area as its polygons give it: outlines less holes, however they wind.
+  for (size_t s = 0; s < scene_.surfaces.size(); ++s)
+    for (const Polygon& p : scene_.surfaces[s].polygons) {
+      area[s] += 0.5 * glm::length(newellNormal(p.outer));
+      for (const Ring& hole : p.holes) area[s] -= 0.5 * glm::length(newellNormal(hole));
+    }
   // Front first: smaller area, then later in the file.
   auto inFront = [&](int a, int b) { return area[size_t(a)] != area[size_t(b)] ? area[size_t(a)] < area[size_t(b)] : a > b; };
   auto meet = [](const Extent& x, const Extent& y) {

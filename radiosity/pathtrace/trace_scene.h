@@ -113,7 +113,7 @@ class TraceScene {
   void addTriangle(TraceTriangle tri);
   /// Surfaces lying on each other in one plane, facing one way (a rug on a floor, a duplicated
   /// face): the one in front must win the ray, not whichever Embree meets first. As the mesher
-  /// decides (mesh/contact_lines.cpp, independently written): the smaller surface lies on the
+  /// decides (mesh/coplanar_pieces.cpp, written independently): the smaller surface lies on the
   /// larger, and of two alike the later in the file. A surface is moved back along its normal
   /// kCoplanarStep for each in front of it in its plane whose box there meets its own.
   void orderCoplanar();
