@@ -15,10 +15,10 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/error.h"
-#include "mesh/geometry.h"
-#include "mesh/progress.h"
-#include "mesh/spatial_hash.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/base/progress.h"
+#include "mesh/base/spatial_hash.h"
 
 namespace rad::meshing {
 namespace {

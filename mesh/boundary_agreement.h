@@ -8,7 +8,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/planar_pieces.h"
-#include "mesh/stage_times.h"
+#include "mesh/base/stage_times.h"
 
 namespace rad::meshing {
 

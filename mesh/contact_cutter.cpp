@@ -15,7 +15,7 @@
 #include <CGAL/Polygon_2_algorithms.h>
 #include <glm/geometric.hpp>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 
 namespace rad {
 namespace {

@@ -10,10 +10,10 @@
 
 #include "mesh/contact_cutter.h"
 #include "mesh/coplanar_pieces.h"
-#include "mesh/geometry.h"
-#include "mesh/progress.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/base/progress.h"
 #include "mesh/solid_probe.h"
-#include "mesh/spatial_hash.h"
+#include "mesh/base/spatial_hash.h"
 
 namespace rad::meshing {
 namespace {

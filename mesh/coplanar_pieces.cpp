@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/geometry.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad::meshing {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/scene.h"
+#include "mesh/scene/scene.h"
 
 namespace rad {
 

@@ -2,7 +2,7 @@
 // The meshing part of the run settings, resolved where every part can reach it: the solver
 // (radiosity/settings.h adds the rest) and the viewer's local-lighting mode mesh a scene alike.
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
+#include "mesh/scene/scene.h"
 
 namespace rad {
 

@@ -3,7 +3,7 @@
 #include <array>
 #include <vector>
 
-#include "mesh/geometry.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/planar_pieces.h"
 #include "mesh/seams.h"
 

@@ -9,9 +9,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/geometry.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/polygon_mesher.h"
-#include "mesh/scene.h"
+#include "mesh/scene/scene.h"
 
 namespace rad::meshing {
 

@@ -19,8 +19,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/error.h"
-#include "mesh/geometry.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad {
 namespace {

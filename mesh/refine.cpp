@@ -6,8 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/error.h"
-#include "mesh/spatial_hash.h"
+#include "mesh/base/error.h"
+#include "mesh/base/spatial_hash.h"
 
 namespace rad {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/geometry.h"
-#include "mesh/scene.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/scene/scene.h"
 
 namespace rad {
 

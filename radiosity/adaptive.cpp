@@ -7,10 +7,10 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/color.h"
-#include "mesh/error.h"
-#include "mesh/geometry.h"
-#include "mesh/progress.h"
+#include "mesh/base/color.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/base/progress.h"
 #include "mesh/refine.h"
 #include "radiosity/settings.h"
 #include "radiosity/result.h"

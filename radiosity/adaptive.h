@@ -8,7 +8,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "radiosity/settings.h"
-#include "radiosity/direct_light.h"
+#include "radiosity/light/direct_light.h"
 
 namespace rad {
 

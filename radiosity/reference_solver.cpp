@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/color.h"
-#include "mesh/error.h"
-#include "mesh/parallel.h"
+#include "mesh/base/color.h"
+#include "mesh/base/error.h"
+#include "mesh/base/parallel.h"
 #include "mesh/patch_mesh.h"
 
 namespace rad {
@@ -56,7 +56,7 @@ TransportMatrix::TransportMatrix(const PatchMesh& mesh, FactorSource& factors,
   });
 }
 
-std::vector<glm::dvec3> TransportMatrix::solveDirect() const {
+std::vector<glm::dvec3> TransportMatrix::solveByLU() const {
   const int n = size();
   std::vector<glm::dvec3> B(n);
   for (int c = 0; c < (grey_ ? 1 : 3); ++c) {

@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 #include <glm/vec3.hpp>
 
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooting/progressive_solver.h"
 
 namespace rad {
 
@@ -28,8 +28,10 @@ class TransportMatrix {
   const Eigen::MatrixXd& G() const { return G_; }
   int size() const { return int(G_.rows()); }
 
-  /// Exact solution by LU decomposition, per channel.
-  std::vector<glm::dvec3> solveDirect() const;
+  /// The system's own solution by LU decomposition, per channel ("direct" in the numerical
+  /// sense, as `solve --fixed-point direct` names it; everywhere else "direct" is the light
+  /// straight from the emitters).
+  std::vector<glm::dvec3> solveByLU() const;
 
   /// Called after every sweep with (sweep, B); return false to stop.
   using SweepCallback = std::function<bool(int, const std::vector<glm::dvec3>&)>;

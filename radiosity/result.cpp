@@ -11,9 +11,9 @@
 
 #include <glm/common.hpp>
 
-#include "mesh/color.h"
-#include "mesh/error.h"
-#include "mesh/result_file.h"
+#include "mesh/base/color.h"
+#include "mesh/base/error.h"
+#include "mesh/results/result_file.h"
 
 namespace rad {
 

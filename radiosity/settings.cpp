@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mesh/error.h"
-#include "mesh/geometry.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad {
 
@@ -62,8 +62,8 @@ Shooting resolveShooting(bool gatherStart, const SolverBlock& file, const Solver
 
 /// Hemicubes, shooting points and the factor cache.
 void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
-  static_cast<Shooting&>(s) = resolveShooting(s.finalGather, file, flags);
-  if (s.finalGather) s.ungathered = resolveShooting(false, file, flags);
+  static_cast<Shooting&>(s) = resolveShooting(false, file, flags);
+  if (s.finalGather) s.gatherStart = resolveShooting(true, file, flags);
   s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution, kDefaultGatherResolution);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);

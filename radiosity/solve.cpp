@@ -6,11 +6,12 @@
 
 #include <glm/common.hpp>
 
-#include "mesh/color.h"
-#include "mesh/default_camera.h"
-#include "mesh/error.h"
-#include "mesh/parallel.h"
+#include "mesh/base/color.h"
+#include "mesh/results/default_camera.h"
+#include "mesh/base/error.h"
+#include "mesh/base/parallel.h"
 #include "radiosity/result.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 
@@ -20,17 +21,6 @@ namespace {
 void passOn(const std::vector<std::string>& warnings, size_t from, const MeshingOptions& options) {
   if (!options.warn) return;
   for (size_t k = from; k < warnings.size(); ++k) options.warn(warnings[k]);
-}
-
-/// The gather's options by the scene's settings, its deadline what the time limit sets.
-GatherOptions gatherOptions(const MeshedScene& s) {
-  GatherOptions options;
-  options.resolution = s.settings.gatherResolution;
-  options.seed = s.settings.seed;
-  if (s.settings.timeLimit > 0)
-    options.deadline = s.started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                       std::chrono::duration<double>(s.settings.timeLimit));
-  return options;
 }
 
 /// An emitter cut away entirely is an error before any ray is cast.
@@ -53,20 +43,21 @@ std::string tooManyEmitters(int emitting) {
          std::to_string(kMaxRayEmitterPatches) + " rays are cast to; the hemicubes' direct light is shown";
 }
 
-/// Without rays there is no refinement to grade the contact lines: they are graded by the
-/// mesher instead, as with adaptive refinement off (the mesh is built again if that differs).
-void meshWithoutRays(MeshedScene& s) {
+/// Whether rays, and the refinement that grades the contact lines, are sure to follow: decided
+/// before meshing, so that the mesh is built once. Else the mesher grades them itself (which
+/// changes the mesh only without the final gather: contactGrading).
+bool refinementWillGrade(const Scene& scene, const Settings& settings) {
+  return settings.adaptive && mostEmittingPatches(scene, settings.maxElementEdge) <= kMaxRayEmitterPatches;
+}
+
+/// Whether the vertices get direct light by rays: they are asked for (or refinement needs
+/// them), and the mesh's emitting patches are at least one and at most kMaxRayEmitterPatches
+/// (DirectLight::enabled); too many, adaptive refinement is left out, with a warning.
+bool castRays(MeshedScene& s) {
+  if (!s.settings.vertexDirect && !s.settings.adaptive) return false;
   const int emitting = emittingPatches(s.mesh);
-  if (!s.settings.adaptive || emitting <= kMaxRayEmitterPatches) return;
-  Settings graded = s.settings;
-  graded.adaptive = false;
-  if (graded.mesh().contactGrading != s.settings.mesh().contactGrading) {
-    s.mesh = buildPatchMesh(s.scene, graded.mesh());
-    // The same repairs first, as meshScene put them: only what follows is new.
-    s.mesh.warnings.insert(s.mesh.warnings.begin(), s.facing.warnings.begin(), s.facing.warnings.end());
-  }
-  s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-  s.mesh.warnings.push_back(tooManyEmitters(emitting));
+  if (s.settings.adaptive && emitting > kMaxRayEmitterPatches) s.mesh.warnings.push_back(tooManyEmitters(emitting));
+  return emitting > 0 && emitting <= kMaxRayEmitterPatches;
 }
 
 AdaptiveOptions adaptiveOptions(const Settings& settings) {
@@ -85,86 +76,54 @@ void refine(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined) {
   if (s.adaptive.elementsAfter > s.adaptive.elementsBefore) s.base = std::move(unrefined);
 }
 
-void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing);
-
-/// The gather left out (`why`, in a warning): the progressive solve shoots as it would
-/// without it.
-void skipGather(MeshedScene& s, const std::string& why) {
-  if (s.settings.ungathered) static_cast<Shooting&>(s.settings) = *s.settings.ungathered;
-  s.mesh.warnings.push_back(why);
+/// What the scene's time limit leaves after meshing so far (0: no limit).
+double timeLeftAfter(const Settings& settings, std::chrono::steady_clock::time_point started) {
+  if (!(settings.timeLimit > 0)) return 0;
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return std::max(kNoTimeLeft, settings.timeLimit - spent);
 }
 
-/// The direct light at the vertices by rays and, with it, adaptive refinement; or, when the
-/// emitters are too many for rays, the mesh the hemicubes alone need. The final gather is
-/// decided once the mesh it draws is known: before refinement, which it does not draw.
+/// The gather's hemicubes over the mesh as built (before refinement, which they do not draw;
+/// `unrefined`: a copy of it, or null), started on threads of their own if a solve follows
+/// and the gather, as it looks now, will run and iterate. The plan made after the rays keeps
+/// them only if it runs.
+std::shared_ptr<GatherAhead> startGatherAhead(const MeshedScene& s, const GatherEstimate& estimate,
+                                              std::shared_ptr<const PatchMesh> unrefined,
+                                              const MeshingOptions& meshing) {
+  const GatherOptions options = gatherOptions(s.settings, s.started);
+  if (!meshing.gatherAhead || !s.settings.finalGather || !estimate.iterates(options)) return nullptr;
+  if (!gatherLeftOut(estimate, workerCount(0), timeLeft(s), s.settings.timeLimit).empty()) return nullptr;
+  if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
+  return std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
+}
+
+/// The direct light at the vertices by rays (castRays) and, with it, adaptive refinement; then
+/// the final gather's plan, its cost estimated over the mesh before refinement (its hemicubes
+/// rendering meanwhile) and its budget checked with the time the rays left.
 void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   s.adaptive.elementsBefore = s.adaptive.elementsAfter = s.mesh.elementCount();
-  if (!s.settings.vertexDirect && !s.settings.adaptive) return decideGather(s, nullptr, options);
-  if (const int emitting = emittingPatches(s.mesh); emitting == 0 || emitting > kMaxRayEmitterPatches) {
-    // No rays (as DirectLight::enabled says).
-    meshWithoutRays(s);
-    return decideGather(s, nullptr, options);
-  }
-  // The gather first: its hemicubes render while the rays' scene is built and they are cast.
+  const bool rays = castRays(s);
   std::shared_ptr<const PatchMesh> unrefined;
-  if (s.settings.adaptive) unrefined = std::make_shared<const PatchMesh>(s.mesh);
-  decideGather(s, unrefined, options);
-  s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
-  RAD_CHECK(s.direct->enabled());
-  if (s.settings.adaptive)
-    refine(s, std::move(unrefined));
-  else
-    s.direct->update(s.mesh);
-  if (!s.settings.vertexDirect) s.direct.reset();
-}
-
-/// What timeLeft says once the time limit is spent (positive: 0 would mean no limit).
-constexpr double kNoTimeLeft = 1e-9;
-/// The gather may take at most this share of the time a time limit leaves after meshing.
-constexpr double kGatherShareOfTimeLeft = 0.5;
-
-/// The final gather if the settings ask for it and it fits the budget (gatherLeftOut).
-/// Skipped, the progressive solve is the answer and shoots as it would without the gather.
-/// Gathered and iterated, its hemicubes over the mesh as it is now (before refinement, which
-/// they do not draw; `unrefined`: a copy of it, or null) start rendering at once if
-/// meshing.gatherAhead says a solve follows.
-void decideGather(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined, const MeshingOptions& meshing) {
-  if (!s.settings.finalGather) return;
-  const GatherOptions options = gatherOptions(s);
-  const GatherEstimate estimate = s.gatherEstimate = estimateGather(s.mesh, s.scene.diagonal(), options);
-  const std::string leftOut = gatherLeftOut(estimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
-  s.gather = leftOut.empty();
-  if (!s.gather) return skipGather(s, leftOut);
-  if (!estimate.iterates(options)) return;
-  // Iterated to its own solution, the gather needs only a start: a hundredth of a shot per
-  // patch, no more than kGatherStartMaxShots shots however many patches there are. Under a
-  // time limit the start may be what is shown (the gather given up at its deadline): it keeps
-  // its tenth of a shot per patch then.
-  const double patches = double(s.mesh.patches.size());
-  if (s.settings.shotsPerPatch > 0) {
-    const double perPatch = s.settings.timeLimit > 0 ? s.settings.shotsPerPatch
-                                                     : std::min(s.settings.shotsPerPatch, kIteratedStartShotsPerPatch);
-    s.settings.shotsPerPatch = std::min(perPatch, double(kGatherStartMaxShots) / patches);
+  if (rays && s.settings.adaptive) unrefined = std::make_shared<const PatchMesh>(s.mesh);
+  GatherEstimate estimate{};
+  if (s.settings.finalGather) estimate = estimateGather(s.mesh, s.scene.diagonal(), gatherOptions(s.settings, s.started));
+  std::shared_ptr<GatherAhead> ahead = startGatherAhead(s, estimate, unrefined, options);
+  if (rays) {
+    s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
+    RAD_CHECK(s.direct->enabled());
+    if (s.settings.adaptive)
+      refine(s, std::move(unrefined));
+    else
+      s.direct->update(s.mesh);
+    if (!s.settings.vertexDirect) s.direct.reset();
   }
-  if (!meshing.gatherAhead) return;
-  if (!unrefined) unrefined = std::make_shared<const PatchMesh>(s.mesh);
-  s.gatherAhead = std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
-}
-
-/// Under a time limit, the gather decided before the rays is decided again with the time they
-/// left (its hemicubes, if rendering, are stopped).
-void recheckGather(MeshedScene& s) {
-  if (!s.gather || !(s.settings.timeLimit > 0)) return;
-  const std::string leftOut = gatherLeftOut(s.gatherEstimate, workerCount(0), timeLeft(s), s.settings.timeLimit);
-  if (leftOut.empty()) return;
-  s.gather = false;
-  s.gatherAhead.reset();
-  skipGather(s, leftOut);
+  s.gather = planGather(s.settings, estimate, s.mesh.patches.size(), timeLeft(s), std::move(ahead));
+  if (!s.gather.leftOut.empty()) s.mesh.warnings.push_back(s.gather.leftOut);
 }
 
 /// The solver options of the scene's settings, the time limit what meshing left of it.
 SolverOptions limitedOptions(const MeshedScene& s) {
-  SolverOptions options = solverOptions(s.settings, s.mesh.patches.size());
+  SolverOptions options = solverOptions(s);
   options.timeLimit = timeLeft(s);
   return options;
 }
@@ -182,30 +141,6 @@ int clampNegative(std::vector<glm::dvec3>& B) {
 
 }  // namespace
 
-std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit) {
-  const double seconds = estimate.seconds(workers), oneCore = estimate.seconds(1);
-  char text[320];
-  if (timeLeft > 0 && timeLeft <= kNoTimeLeft)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped, and no shot: meshing took all of the %.3g s time limit; the direct light "
-                  "and the ambient term are shown",
-                  timeLimit);
-  else if (oneCore > kMaxGatherSeconds)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped: its hemicubes would take about %.2g s on one core, more than the %.0f s "
-                  "it may (a quarter of an hour on two); the progressive solution is shown at the vertices (coarser "
-                  "elements gather: raise solver.max_element_edge)",
-                  oneCore, kMaxGatherSeconds);
-  else if (timeLeft > 0 && seconds > kGatherShareOfTimeLeft * timeLeft)
-    std::snprintf(text, sizeof text,
-                  "final gather skipped: it would take about %.2g s of the %.2g s the time limit leaves after "
-                  "meshing; the progressive solution is shown at the vertices, shot until the time limit",
-                  seconds, timeLeft);
-  else
-    return {};
-  return text;
-}
-
 Scene loadSceneToSolve(const std::string& path) {
   Scene scene = loadScene(path);
   if (!scene.hasEmitter())
@@ -215,50 +150,49 @@ Scene loadSceneToSolve(const std::string& path) {
 }
 
 MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options) {
-  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr, false, {}, {}, std::chrono::steady_clock::now(), {}};
+  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr, {}, std::chrono::steady_clock::now(), {}};
   const auto facingStart = StageTimes::Clock::now();
   if (settings.fixFacing) s.facing = turnToLitSpace(s.scene);
   const double facingSeconds = StageTimes::since(facingStart);
-  s.mesh = buildPatchMesh(s.scene, s.settings.mesh());
+  s.mesh = buildPatchMesh(s.scene, s.settings.mesh(refinementWillGrade(s.scene, settings)));
   s.mesh.stats.stages.add("facing", facingSeconds);
   s.mesh.warnings.insert(s.mesh.warnings.begin(), s.facing.warnings.begin(), s.facing.warnings.end());
   passOn(s.mesh.warnings, 0, options);
   if (options.requireEmitter) requireEmitter(s);
-  // A mesh built again has the same repairs first: only what follows is new.
   const size_t passed = s.mesh.warnings.size();
   lightVertices(s, options);
-  recheckGather(s);
   passOn(s.mesh.warnings, passed, options);
   return s;
 }
 
-double timeLeft(const MeshedScene& scene) {
-  if (!(scene.settings.timeLimit > 0)) return 0;
-  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - scene.started).count();
-  return std::max(kNoTimeLeft, scene.settings.timeLimit - spent);
-}
+double timeLeft(const MeshedScene& scene) { return timeLeftAfter(scene.settings, scene.started); }
 
-SolverOptions solverOptions(const Settings& settings, size_t patches) {
+SolverOptions solverOptions(const Settings& settings, const Shooting& shooting, size_t patches) {
   SolverOptions options;
-  options.tolerance = settings.tolerance;
+  options.tolerance = shooting.tolerance;
   options.maxShots = settings.maxShots;
-  if (!options.maxShots && settings.shotsPerPatch > 0)
-    options.maxShots = std::max(1L, long(std::ceil(settings.shotsPerPatch * double(patches))));
+  if (!options.maxShots && shooting.shotsPerPatch > 0)
+    options.maxShots = std::max(1L, long(std::ceil(shooting.shotsPerPatch * double(patches))));
   options.timeLimit = settings.timeLimit;
   options.overshoot = settings.overshoot;
-  options.emitterSamples = settings.emitterSamples;
+  options.emitterSamples = shooting.emitterSamples;
   options.shooterSamples = settings.shooterSamples;
   options.proximitySamples = settings.proximitySamples;
   options.clusters = settings.clusterShooters;
-  options.followingResolution = settings.resolutionFollowsPower ? settings.hemicubeResolution : 0;
+  options.followingResolution = settings.resolutionFollowsPower ? shooting.hemicubeResolution : 0;
   options.factorCacheBytes = size_t(settings.factorCacheMb * 1024 * 1024);
   return options;
 }
 
+SolverOptions solverOptions(const MeshedScene& scene) {
+  return solverOptions(scene.settings, scene.gather.shooting, scene.mesh.patches.size());
+}
+
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& s, int workers) {
   // With the gather on, the shots are only its start: their hemicubes draw flat regions too.
-  return std::make_unique<HemicubeFactors>(s.mesh, s.settings.hemicubeResolution, s.scene.diagonal(),
-                                           s.settings.seed, workers, s.settings.emitterHemicubeResolution, s.gather);
+  const Shooting& shooting = s.gather.shooting;
+  return std::make_unique<HemicubeFactors>(s.mesh, shooting.hemicubeResolution, s.scene.diagonal(), s.settings.seed,
+                                           workers, shooting.emitterHemicubeResolution, s.gather.on);
 }
 
 RadiositySolve::RadiositySolve(const MeshedScene& scene, int workers)
@@ -279,7 +213,7 @@ Solution RadiositySolve::bake(bool gather) const {
   b.B = solver_.radiosity();
   b.clamped = clampNegative(b.B);
   if (scene_.direct) b.direct = VertexDirect{solver_.direct(), scene_.direct->radiosity(), scene_.base.get()};
-  if (gather && scene_.gather) gatherAtVertices(b);
+  if (gather && scene_.gather.on) gatherAtVertices(b);
   return b;
 }
 
@@ -288,10 +222,10 @@ void RadiositySolve::gatherAtVertices(Solution& b) const {
   std::vector<glm::dvec3> start = shownAtVertices(scene_, b);
   const std::vector<glm::dvec3> emission = vertexEmission(mesh);
   for (size_t v = 0; v < start.size(); ++v) start[v] = glm::max(start[v] - emission[v], glm::dvec3(0.0));
-  GatherOptions options = gatherOptions(scene_);
+  GatherOptions options = gatherOptions(scene_.settings, scene_.started);
   options.workers = workers_;
   const std::vector<glm::dvec3>* direct = b.direct ? &b.direct->vertex : nullptr;
-  const GatherRows* rendered = scene_.gatherAhead ? &scene_.gatherAhead->rows() : nullptr;
+  const GatherRows* rendered = scene_.gather.ahead ? &scene_.gather.ahead->rows() : nullptr;
   std::vector<glm::dvec3> gathered =
       finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather, rendered);
   if (b.gather.timedOut) return;  // the progressive solution stays, with its ambient term

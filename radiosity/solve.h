@@ -20,11 +20,12 @@
 
 #include "mesh/facing.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
+#include "mesh/scene/scene.h"
 #include "radiosity/adaptive.h"
-#include "radiosity/direct_light.h"
-#include "radiosity/final_gather.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/light/direct_light.h"
+#include "radiosity/gather/final_gather.h"
+#include "radiosity/gather_plan.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/settings.h"
 #include "radiosity/vertex_radiosity.h"
 
@@ -39,20 +40,14 @@ struct MeshedScene {
   Settings settings;
   PatchMesh mesh;
   /// Direct light at the vertices by rays: null when settings.vertexDirect is off or the
-  /// scene's emitters are too many for rays (kMaxRayEmitterPatches).
+  /// scene's emitters are too many for rays (lightByRays, decided before meshing).
   std::unique_ptr<DirectLight> direct;
   AdaptiveStats adaptive;            ///< what adaptive refinement did
   std::shared_ptr<const PatchMesh> base;  ///< the mesh before refinement (null if nothing was refined)
-  /// Whether the solution is gathered at the vertices: settings.finalGather, unless
-  /// gatherLeftOut says why not (in a warning).
-  bool gather = false;
-  /// What the gather would cost: the triangles its hemicubes would draw, the pixels they
-  /// would resolve to elements, the factors it would keep (estimateGather; zeros with the
-  /// gather off).
-  GatherEstimate gatherEstimate{};
-  /// The gather's hemicubes, rendering since the mesh they draw was known
-  /// (MeshingOptions::gatherAhead), or null: then the gather renders them itself.
-  std::shared_ptr<GatherAhead> gatherAhead{};
+  /// The final gather, decided once the rays are cast: whether it runs (settings.finalGather,
+  /// unless its budget says why not, in a warning), what it costs, and what the progressive
+  /// solve shoots with.
+  GatherPlan gather;
   /// When meshing began: settings.timeLimit counts from here, the solve and its gather get
   /// what meshing left of it.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
@@ -77,16 +72,14 @@ struct MeshingOptions {
 /// its vertices by rays, and adaptive refinement where that light changes visibly.
 MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options = {});
 
-/// The solver options the settings give, for a mesh of `patches` patches (which
-/// Settings::shotsPerPatch counts).
-SolverOptions solverOptions(const Settings& settings, size_t patches);
-/// The seconds of settings.timeLimit the scene has left (0: no limit; else at least 1e-9,
-/// once spent).
+/// The solver options of the settings shooting as `shooting` says, for a mesh of `patches`
+/// patches (which Shooting::shotsPerPatch counts).
+SolverOptions solverOptions(const Settings& settings, const Shooting& shooting, size_t patches);
+/// The same for a meshed scene: its settings, shooting as its gather's plan says.
+SolverOptions solverOptions(const MeshedScene& scene);
+/// The seconds of settings.timeLimit the scene has left (0: no limit; else at least
+/// kNoTimeLeft, once spent).
 double timeLeft(const MeshedScene& scene);
-/// Why the final gather is left out, as the warning says it, or empty: meshing spent the time
-/// limit (`timeLimit`), or it would take more than kMaxGatherSeconds on one core, or more than
-/// half of what the limit leaves (`timeLeft`; 0: no limit) on `workers`.
-std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double timeLeft, double timeLimit);
 /// Hemicubes at the settings' resolutions and seed (workers 0: one per hardware thread).
 std::unique_ptr<HemicubeFactors> hemicubeFactors(const MeshedScene& scene, int workers = 0);
 

@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 
 namespace rad {
 namespace {

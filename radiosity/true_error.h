@@ -1,6 +1,6 @@
 #pragma once
 // The true error: what a viewer shows (the Gouraud vertex radiosity interpolated at surface
-// points) against an independent reference (mesh/reference_points.h, from the path tracer),
+// points) against an independent reference (mesh/results/reference_points.h, from the path tracer),
 // never against the solver's own fixed point.
 #include <string>
 #include <vector>
@@ -8,8 +8,8 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/reference_points.h"
-#include "mesh/scene.h"
+#include "mesh/results/reference_points.h"
+#include "mesh/scene/scene.h"
 
 namespace rad {
 

@@ -8,7 +8,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 
 namespace rad {
 

@@ -13,7 +13,7 @@
 // a, the ambient term of an unconverged solve (Cohen et al. 1988), zero once converged; ρ(v)
 //   the reflectance of the vertex's surface.
 // Every consumer (the result file, the true error, the tests) takes the vertex values from here,
-// unless the final gather ran (radiosity/final_gather.h, the default): it replaces I(v) by the
+// unless the final gather ran (radiosity/gather/final_gather.h, the default): it replaces I(v) by the
 // light gathered at the vertex itself, the vertex system solved, so a = 0:
 //   shown(v) = E(v) + D(v) + ρ(v)·Σⱼ F_vj·(reflected light of element j).
 #include <optional>

@@ -11,15 +11,15 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
-#include "mesh/error.h"
+#include "mesh/base/color.h"
+#include "mesh/base/error.h"
 #include "mesh/refine.h"
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
 #include "tests/solve_support.h"
-#include "radiosity/point_polygon.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/formfactors/point_polygon.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
 
 namespace rad {

@@ -2,10 +2,10 @@
 // al.'s in a closed scene, and in an open one only what the scene keeps of it.
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
+#include "mesh/base/color.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/factor_source.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooting/factor_source.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "tests/solve_support.h"
 
 namespace rad {
@@ -44,7 +44,7 @@ TEST(AmbientTest, OpenBoxStoppedEarlyIsNotBiased) {
   flags.maxShots = 10;
   const auto solved = test::solveLikeCli(kScenes + "cornell.json", flags);
   ASSERT_EQ(solved->solver().shots(), 10);
-  const ErrorSummary error = test::trueErrorOf(*solved, test::kDocs + "cornell_reference.csv");
+  const ErrorSummary error = test::trueErrorOf(*solved, test::kReferences + "cornell_reference.csv");
   for (int c = 0; c < 3; ++c) EXPECT_LT(std::abs(error.meanRgb[c]), kEarlyStopMostBias) << c;
   EXPECT_LT(error.rms, kEarlyStopMostRms);
 }

@@ -1,4 +1,4 @@
-// Clear sight (radiosity/clear_sight.h): whether anything stands between a point and a light,
+// Clear sight (radiosity/light/clear_sight.h): whether anything stands between a point and a light,
 // against the pyramid the point's shadow rays fill.
 #include <array>
 #include <vector>
@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "radiosity/clear_sight.h"
-#include "radiosity/element_hierarchy.h"
+#include "radiosity/light/clear_sight.h"
+#include "radiosity/formfactors/element_hierarchy.h"
 
 namespace rad {
 namespace {

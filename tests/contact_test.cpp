@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/solve.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
 
 namespace rad {

@@ -1,4 +1,4 @@
-// The default camera of a scene without one (mesh/default_camera.h): into an open box through
+// The default camera of a scene without one (mesh/results/default_camera.h): into an open box through
 // its open side, inside a closed room at eye height, around an object; and the rays it is chosen
 // by (mesh/surface_rays.h).
 #include <algorithm>
@@ -8,10 +8,10 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/camera.h"
-#include "mesh/default_camera.h"
-#include "mesh/result_file.h"
-#include "mesh/scene.h"
+#include "mesh/scene/camera.h"
+#include "mesh/results/default_camera.h"
+#include "mesh/results/result_file.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "mesh/surface_rays.h"
 #include "tests/support.h"
 

@@ -1,5 +1,5 @@
 // What a user sees of a scene without a camera, through the shipping commands with their
-// defaults: `radiosity solve` (whose result carries the default camera, mesh/default_camera.h)
+// defaults: `radiosity solve` (whose result carries the default camera, mesh/results/default_camera.h)
 // then `radview`. The Cornell box must be seen from inside: its red wall in the left half of the
 // picture, its green wall in the right half, a lit centre; not the back of its back wall.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "display/viewer.h"
+#include "display/viewer/viewer.h"
 #include "tests/support.h"
 
 namespace rad::viewer {

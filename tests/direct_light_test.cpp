@@ -1,4 +1,4 @@
-// Direct light by rays (radiosity/direct_light.h): the lights of a point share its rays by
+// Direct light by rays (radiosity/light/direct_light.h): the lights of a point share its rays by
 // what each brings. A lone light still casts every sample; several lights cast fewer rays and
 // show the same light as every sample of every light does.
 #include <algorithm>
@@ -11,12 +11,13 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
+#include "mesh/base/color.h"
 #include "mesh/refine.h"
-#include "radiosity/direct_light.h"
-#include "radiosity/point_polygon.h"
+#include "radiosity/light/direct_light.h"
+#include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

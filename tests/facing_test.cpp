@@ -9,8 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "mesh/facing.h"
-#include "mesh/geometry.h"
+#include "mesh/scene/geometry.h"
 #include "tests/solve_support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

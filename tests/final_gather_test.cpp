@@ -1,4 +1,4 @@
-// The final gather at the vertices (radiosity/final_gather.h), through the shipping pipeline:
+// The final gather at the vertices (radiosity/gather/final_gather.h), through the shipping pipeline:
 // the closed furnace comes out exact, the Cornell box's true error against its stored
 // path-traced references stays within the measured limits, the elements agree with their
 // vertices, and a scene too large for the gather is told so.
@@ -11,17 +11,17 @@
 #include <glm/common.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/reference_points.h"
-#include "radiosity/final_gather.h"
-#include "radiosity/flat_regions.h"
-#include "radiosity/gather_points.h"
+#include "mesh/results/reference_points.h"
+#include "radiosity/gather/final_gather.h"
+#include "radiosity/formfactors/flat_regions.h"
+#include "radiosity/gather/gather_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
 
 namespace rad {
 namespace {
 
-using test::kDocs;
+using test::kReferences;
 using test::trueError;
 using test::trueErrorOf;
 
@@ -40,7 +40,7 @@ TEST_P(FurnaceGatherTest, EveryVertexAndElementExact) {
   // The scene's settings: the progressive solve only starts the gather off (a tenth of a shot per patch).
   const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed = meshScene(std::move(scene), settings);
-  ASSERT_TRUE(meshed.gather);
+  ASSERT_TRUE(meshed.gather.on);
   ASSERT_FALSE(meshed.direct);  // every patch emits: no rays, the gather takes the emission itself
   const Solution solution = solveRadiosity(meshed);
   ASSERT_TRUE(solution.gathered);
@@ -68,13 +68,13 @@ constexpr double kCornellAll = 0.02, kCornellArea = 0.02, kCornellNearBlocks = 0
 TEST(FinalGatherTest, CornellBoxTrueErrorAtDefaults) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
   ASSERT_TRUE(s->solution.gathered);
-  EXPECT_LE(trueError(*s, kDocs + "cornell_reference.csv"), kCornellAll);
-  EXPECT_LE(trueError(*s, kDocs + "cornell_reference.csv", "area"), kCornellArea);
-  EXPECT_LE(trueError(*s, kDocs + "cornell_near_blocks_reference.csv"), kCornellNearBlocks);
+  EXPECT_LE(trueError(*s, kReferences + "cornell_reference.csv"), kCornellAll);
+  EXPECT_LE(trueError(*s, kReferences + "cornell_reference.csv", "area"), kCornellArea);
+  EXPECT_LE(trueError(*s, kReferences + "cornell_near_blocks_reference.csv"), kCornellNearBlocks);
 }
 
 /// The doorway scene (scenes/doorway.json): the room behind the doorway, lit only through it,
-/// against its path-traced reference (docs/doorway_reference.csv, 1 % noise), at default
+/// against its path-traced reference (tests/data/references/doorway_reference.csv, 1 % noise), at default
 /// settings. The targets: no bias beyond ±1 % in any channel, RMS ≤ 3 % over the
 /// room's area-stratified points. The doorway's jambs (kept by the contact cutter) within 3 %,
 /// its lintel (6 points) within 5 %. Measured: room 1.7 % RMS, channel means −0.4 to −0.2 %;
@@ -87,17 +87,17 @@ constexpr double kDoorwayRoomBias = 0.01, kDoorwayRoomRms = 0.03, kDoorwayJambRm
 TEST(FinalGatherTest, RoomBehindADoorwayAtDefaults) {
   const auto s = test::solveLikeCli(test::kScenes + "doorway.json");
   ASSERT_TRUE(s->solution.gathered);
-  const ErrorSummary room = trueErrorOf(*s, kDocs + "doorway_reference.csv", "roomB_");
+  const ErrorSummary room = trueErrorOf(*s, kReferences + "doorway_reference.csv", "roomB_");
   EXPECT_GE(room.used, 500);
   EXPECT_LE(room.rms, kDoorwayRoomRms);
   for (int c = 0; c < 3; ++c) EXPECT_LE(std::abs(room.meanRgb[c]), kDoorwayRoomBias) << "channel " << c;
   for (const char* jamb : {"doorway_jamb_left", "doorway_jamb_right"})
-    EXPECT_LE(trueError(*s, kDocs + "doorway_reference.csv", jamb), kDoorwayJambRms) << jamb;
-  EXPECT_LE(trueError(*s, kDocs + "doorway_reference.csv", "doorway_lintel"), kDoorwayLintelRms);
+    EXPECT_LE(trueError(*s, kReferences + "doorway_reference.csv", jamb), kDoorwayJambRms) << jamb;
+  EXPECT_LE(trueError(*s, kReferences + "doorway_reference.csv", "doorway_lintel"), kDoorwayLintelRms);
 }
 
 /// McGuire's CornellBox-Original from its one-line scene (scenes/cornell_original.json), at
-/// default settings, against its path-traced reference (docs/cornell_original_reference.csv:
+/// default settings, against its path-traced reference (tests/data/references/cornell_original_reference.csv:
 /// 300 points, seed 1, the reference's defaults). Measured: 1.53 % RMS; the limit leaves room
 /// for the reference's own noise (about 0.8 %) and a seed's worth of hemicube noise.
 constexpr double kCornellOriginalRms = 0.02;
@@ -105,7 +105,7 @@ constexpr double kCornellOriginalRms = 0.02;
 TEST(FinalGatherTest, CornellBoxOriginalFromItsMeshFileTrueErrorAtDefaults) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell_original.json");
   ASSERT_TRUE(s->solution.gathered);
-  EXPECT_LE(trueError(*s, kDocs + "cornell_original_reference.csv"), kCornellOriginalRms);
+  EXPECT_LE(trueError(*s, kReferences + "cornell_original_reference.csv"), kCornellOriginalRms);
 }
 
 /// The gather's hemicubes rendered beside the rays and the shots (GatherAhead, as `radiosity
@@ -116,7 +116,7 @@ TEST(FinalGatherTest, HemicubesRenderedAheadGiveTheSameLight) {
     Scene scene = loadSceneToSolve(test::kScenes + "cornell_original.json");
     const Settings settings = resolveSettings(scene, {});
     auto meshed = std::make_unique<MeshedScene>(meshScene(std::move(scene), settings, {true, nullptr, ahead}));
-    EXPECT_EQ(bool(meshed->gatherAhead), ahead);
+    EXPECT_EQ(bool(meshed->gather.ahead), ahead);
     EXPECT_TRUE(meshed->base);  // refined: the hemicubes draw the mesh before
     const Solution solution = solveRadiosity(*meshed);
     return std::make_pair(*solution.gathered, solution.gather);
@@ -205,12 +205,12 @@ TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
   Scene scene = loadSceneToSolve(test::kData + "fine_box.json");
   const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed = meshScene(std::move(scene), settings);
-  EXPECT_TRUE(meshed.gather);
+  EXPECT_TRUE(meshed.gather.on);
   const double vertices = double(meshed.mesh.mesh.n_vertices());
   EXPECT_GT(vertices, 40000);
-  EXPECT_LT(meshed.gatherEstimate.drawn, 20 * vertices);
+  EXPECT_LT(meshed.gather.estimate.drawn, 20 * vertices);
   // 12 s on one core (1.5e8 pixels resolved); drawing every element, 4.7e9 pairs were 141 s.
-  EXPECT_LT(meshed.gatherEstimate.seconds(1), 30);
+  EXPECT_LT(meshed.gather.estimate.seconds(1), 30);
 }
 
 /// Where a hemicube sees most of the scene (the Cornell box) it does not cull: the gather
@@ -218,14 +218,14 @@ TEST(FinalGatherTest, AFineBoxDrawsItsWallsOutlines) {
 /// than a top face's worth of pixels in each (the box is closed but for its front).
 TEST(FinalGatherTest, WorkIsWhatTheHemicubesDraw) {
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json");
-  ASSERT_TRUE(s->meshed.gather);
+  ASSERT_TRUE(s->meshed.gather.on);
   const PatchMesh& base = *s->meshed.base;
   const double points = double(s->solution.gather.points);
   const FlatRegions regions(base, s->meshed.scene.diagonal());
   EXPECT_LT(regions.drawn().elementCount() * 20, size_t(base.elementCount()));
-  EXPECT_EQ(s->meshed.gatherEstimate.drawn, points * double(regions.drawn().elementCount()));
+  EXPECT_EQ(s->meshed.gather.estimate.drawn, points * double(regions.drawn().elementCount()));
   const int R = kDefaultGatherResolution;
-  EXPECT_GT(s->meshed.gatherEstimate.located, points * R * R);
+  EXPECT_GT(s->meshed.gather.estimate.located, points * R * R);
 }
 
 /// With rows that fit its memory, the gather is iterated to its own solution from any start:
@@ -237,11 +237,11 @@ TEST(FinalGatherTest, IteratedGatherStartsFromAHundredShotsAtMost) {
   flags.maxPatchEdge = 0.03;  // a patch per element: over ten thousand patches
   const Settings settings = resolveSettings(scene, flags);
   const MeshedScene meshed = meshScene(std::move(scene), settings);
-  ASSERT_TRUE(meshed.gather);
-  ASSERT_TRUE(meshed.gatherEstimate.iterates(GatherOptions{}));
+  ASSERT_TRUE(meshed.gather.on);
+  ASSERT_TRUE(meshed.gather.estimate.iterates(GatherOptions{}));
   const double patches = double(meshed.mesh.patches.size());
   EXPECT_GT(kIteratedStartShotsPerPatch * patches, double(kGatherStartMaxShots));
-  EXPECT_NEAR(meshed.settings.shotsPerPatch * patches, double(kGatherStartMaxShots), 1e-6);
+  EXPECT_NEAR(meshed.gather.shooting.shotsPerPatch * patches, double(kGatherStartMaxShots), 1e-6);
 }
 
 /// A time limit that meshing alone uses up: no gather and no shot, but a result to look at
@@ -254,7 +254,7 @@ TEST(FinalGatherTest, TimeLimitSpentByMeshingStillGivesAViewableResult) {
   const Settings settings = resolveSettings(scene, flags);
   const MeshedScene meshed = meshScene(std::move(scene), settings,
                                        {true, [&](const std::string& w) { warnings.push_back(w); }});
-  EXPECT_FALSE(meshed.gather);
+  EXPECT_FALSE(meshed.gather.on);
   EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
                           [](const std::string& w) { return w.find("meshing took all") != std::string::npos; }));
   RadiositySolve solve(meshed);
@@ -310,7 +310,7 @@ TEST(FinalGatherTest, SettingOffKeepsTheProgressiveSolution) {
   SolverBlock flags;
   flags.finalGather = false;
   const auto s = test::solveLikeCli(test::kScenes + "cornell.json", flags);
-  EXPECT_FALSE(s->meshed.gather);
+  EXPECT_FALSE(s->meshed.gather.on);
   EXPECT_FALSE(s->solution.gathered);
 }
 

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
-#include "radiosity/final_gather.h"
-#include "radiosity/flat_regions.h"
-#include "radiosity/hemicube.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/gather/final_gather.h"
+#include "radiosity/formfactors/flat_regions.h"
+#include "radiosity/formfactors/hemicube.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
+#include "mesh/base/color.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/factor_source.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooting/factor_source.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "tests/solve_support.h"
 
 namespace rad {
@@ -106,7 +106,7 @@ TEST(FollowingResolutionTest, CornellBoxWithoutTheGatherKeepsItsTrueError) {
   const auto plain = test::solveLikeCli(kScenes + "cornell.json", flags);
   EXPECT_GT(following->solver().coarserShots(), 0);
   EXPECT_EQ(plain->solver().coarserShots(), 0);
-  const std::string reference = test::kDocs + "cornell_reference.csv";
+  const std::string reference = test::kReferences + "cornell_reference.csv";
   EXPECT_LE(test::trueError(*following, reference), test::trueError(*plain, reference) + kFollowingErrorSlack);
 }
 

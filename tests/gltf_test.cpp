@@ -10,12 +10,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/coplanar_faces.h"
-#include "mesh/geometry.h"
-#include "mesh/gltf_reader.h"
-#include "mesh/reference_points.h"
+#include "mesh/scene/readers/coplanar_faces.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/scene/readers/gltf_reader.h"
+#include "mesh/results/reference_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {
@@ -451,7 +452,7 @@ double rmsOf(const std::vector<std::pair<double, int>>& squares, int except = -1
 TEST(GltfCornellTest, SolvesToTheLightOfTheJsonScene) {
   const auto json = test::solveLikeCli(test::kScenes + "cornell.json");
   const auto gltf = test::solveLikeCli(test::kData + "cornell_gltf.json");
-  const std::string reference = test::kSourceDir + "/docs/cornell_reference.csv";
+  const std::string reference = test::kReferences + "cornell_reference.csv";
   const std::vector<ReferencePoint> points = readReferenceFile(reference).points;
   const TrueError atJson(json->meshed.mesh, json->meshed.scene, points, reference);
   const TrueError atGltf(gltf->meshed.mesh, gltf->meshed.scene, gltfPoints(points, gltf->meshed.scene), reference);

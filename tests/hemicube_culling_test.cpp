@@ -9,12 +9,12 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
-#include "radiosity/element_hierarchy.h"
-#include "radiosity/hemicube.h"
-#include "radiosity/hemicube_culling.h"
-#include "radiosity/hemicube_depth_pyramid.h"
-#include "radiosity/hemicube_index_set.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/formfactors/element_hierarchy.h"
+#include "radiosity/formfactors/hemicube.h"
+#include "radiosity/formfactors/hemicube_culling.h"
+#include "radiosity/formfactors/hemicube_depth_pyramid.h"
+#include "radiosity/formfactors/hemicube_index_set.h"
 #include "tests/room_grid.h"
 #include "tests/support.h"
 

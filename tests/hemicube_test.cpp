@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
-#include "radiosity/hemicube.h"
-#include "radiosity/point_polygon.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/formfactors/hemicube.h"
+#include "radiosity/formfactors/point_polygon.h"
 #include "tests/support.h"
 
 namespace rad {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "tests/solve_support.h"
 
 namespace rad {

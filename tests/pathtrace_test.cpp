@@ -8,14 +8,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"
 #include "radiosity/pathtrace/path_tracer.h"
-#include "radiosity/point_polygon.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/formfactors/point_polygon.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
 #include "radiosity/true_error.h"
 

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/error.h"
-#include "mesh/ply_reader.h"
-#include "mesh/ply_writer.h"
+#include "mesh/base/error.h"
+#include "mesh/base/ply_reader.h"
+#include "mesh/base/ply_writer.h"
 #include "tests/support.h"
 
 namespace rad {

@@ -1,4 +1,4 @@
-// Progress of long stages (mesh/progress.h) and the stages' times (mesh/stage_times.h).
+// Progress of long stages (mesh/base/progress.h) and the stages' times (mesh/base/stage_times.h).
 #include <chrono>
 #include <string>
 #include <thread>
@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/progress.h"
-#include "mesh/stage_times.h"
+#include "mesh/base/progress.h"
+#include "mesh/base/stage_times.h"
 
 namespace rad {
 namespace {

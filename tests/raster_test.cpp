@@ -1,5 +1,5 @@
-// Tests of the raster core (display/raster.h).
-#include "display/raster.h"
+// Tests of the raster core (display/raster/raster.h).
+#include "display/raster/raster.h"
 #include "tests/support.h"
 
 #include <gtest/gtest.h>

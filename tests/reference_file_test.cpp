@@ -1,4 +1,4 @@
-// The reference file (mesh/reference_points.h) and mesh files (mesh/mesh_file.h): what is
+// The reference file (mesh/results/reference_points.h) and mesh files (mesh/scene/readers/mesh_file.h): what is
 // written is read back (names with commas and quotes, every kind of line end); bad files are
 // located errors.
 #include <filesystem>
@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/error.h"
-#include "mesh/mesh_file.h"
-#include "mesh/reference_points.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/readers/mesh_file.h"
+#include "mesh/results/reference_points.h"
 #include "tests/support.h"
 
 namespace rad {

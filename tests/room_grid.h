@@ -15,7 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "radiosity/hemicube.h"
+#include "radiosity/formfactors/hemicube.h"
 
 namespace rad::test {
 

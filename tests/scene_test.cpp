@@ -6,9 +6,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "tests/support.h"
 
 namespace rad {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 
@@ -28,16 +28,22 @@ TEST(SettingsTest, DefaultsFollowTheSceneSize) {
   EXPECT_EQ(s.maxPatchEdge, 0.9);
 }
 
+/// The solver's options of a scene's settings, shooting as a solve that is the answer.
+SolverOptions answerOptions(const Scene& scene) {
+  const Settings settings = resolveSettings(scene, {});
+  return solverOptions(settings, settings.shooting(false), 10);
+}
+
 /// Shooter clusters are on by default; the scene's solver block and the flag turn them off,
 /// and the solver's options follow.
 TEST(SettingsTest, ClusterShootersFromFileAndFlag) {
   Scene scene = loadScene(kScenes + "cube.json");
   scene.solver = SolverBlock{};
   EXPECT_TRUE(resolveSettings(scene, {}).clusterShooters);
-  EXPECT_TRUE(solverOptions(resolveSettings(scene, {}), 10).clusters);
+  EXPECT_TRUE(answerOptions(scene).clusters);
   scene.solver.clusterShooters = false;
   EXPECT_FALSE(resolveSettings(scene, {}).clusterShooters);
-  EXPECT_FALSE(solverOptions(resolveSettings(scene, {}), 10).clusters);
+  EXPECT_FALSE(answerOptions(scene).clusters);
   SolverBlock flags;
   flags.clusterShooters = true;
   EXPECT_TRUE(resolveSettings(scene, flags).clusterShooters);  // the flag wins over the file
@@ -51,9 +57,9 @@ TEST(SettingsTest, ResolutionFollowsPowerFromFileAndFlag) {
   scene.solver = SolverBlock{};
   scene.solver.finalGather = false;
   EXPECT_TRUE(resolveSettings(scene, {}).resolutionFollowsPower);
-  EXPECT_EQ(solverOptions(resolveSettings(scene, {}), 10).followingResolution, kDefaultHemicubeResolution);
+  EXPECT_EQ(answerOptions(scene).followingResolution, kDefaultHemicubeResolution);
   scene.solver.resolutionFollowsPower = false;
-  EXPECT_EQ(solverOptions(resolveSettings(scene, {}), 10).followingResolution, 0);
+  EXPECT_EQ(answerOptions(scene).followingResolution, 0);
   SolverBlock flags;
   flags.resolutionFollowsPower = true;
   EXPECT_TRUE(resolveSettings(scene, flags).resolutionFollowsPower);  // the flag wins over the file

@@ -1,4 +1,4 @@
-// Shooter clusters (radiosity/shooter_clusters.h): coplanar patches far from other surfaces
+// Shooter clusters (radiosity/shooting/shooter_clusters.h): coplanar patches far from other surfaces
 // shoot together from fewer points, losing no light and no accuracy.
 #include <algorithm>
 #include <set>
@@ -7,13 +7,14 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
+#include "mesh/base/color.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/factor_source.h"
-#include "radiosity/progressive_solver.h"
-#include "radiosity/shooter_clusters.h"
-#include "radiosity/shooter_samples.h"
+#include "radiosity/shooting/factor_source.h"
+#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/shooting/shooter_clusters.h"
+#include "radiosity/shooting/shooter_samples.h"
 #include "tests/solve_support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {
@@ -192,7 +193,7 @@ TEST(ShooterClustersTest, FinelyPatchedCornellBoxKeepsItsTrueErrorWithFewerHemic
   EXPECT_GT(clustered->solver().clusterShots(), 0);
   EXPECT_EQ(alone->solver().clusterShots(), 0);
   EXPECT_LT(clustered->solver().hemicubes(), alone->solver().hemicubes());
-  const std::string reference = test::kDocs + "cornell_reference.csv";
+  const std::string reference = test::kReferences + "cornell_reference.csv";
   EXPECT_LE(test::trueError(*clustered, reference), test::trueError(*alone, reference) + kClusterErrorSlack);
 }
 

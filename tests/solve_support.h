@@ -8,12 +8,13 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/color.h"
-#include "mesh/reference_points.h"
-#include "radiosity/progressive_solver.h"
+#include "mesh/base/color.h"
+#include "mesh/results/reference_points.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
 #include "tests/support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad::test {
 
@@ -42,8 +43,8 @@ inline std::unique_ptr<Solved> solveLikeCli(const std::string& path, const Solve
   return s;
 }
 
-/// The stored references (radiosity reference) of docs/.
-inline const std::string kDocs = kSourceDir + "/docs/";
+/// The stored references (radiosity reference) of the shipped scenes.
+inline const std::string kReferences = kSourceDir + "/tests/data/references/";
 
 /// The true error of what a solve shows, against a stored reference; only the points whose
 /// tag starts with `tag`.

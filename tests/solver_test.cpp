@@ -7,11 +7,11 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
-#include "mesh/scene.h"
-#include "radiosity/progressive_solver.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
-#include "radiosity/point_polygon.h"
+#include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/settings.h"
 #include "tests/support.h"
 
@@ -191,11 +191,11 @@ TEST_F(CornellSolveTest, DoublingEmissionDoublesRadiosity) {
 }
 
 
-/// Progressive refinement, Jacobi and Gauss–Seidel all converge to the direct solution of the
+/// Progressive refinement, Jacobi and Gauss–Seidel all converge to the LU solution of the
 /// system built from the very same hemicubes.
-/// On the coloured Cornell box and on the grey cube (where the progressive and direct solvers
+/// On the coloured Cornell box and on the grey cube (where the progressive and LU solvers
 /// carry one channel and copy it, while Jacobi and Gauss–Seidel carry all three).
-TEST(ReferenceTest, EverySolverConvergesToTheDirectSolutionOnTheSameFactors) {
+TEST(ReferenceTest, EverySolverConvergesToTheLUSolutionOnTheSameFactors) {
   const struct {
     const char* scene;
     double element, patch;
@@ -211,25 +211,25 @@ TEST(ReferenceTest, EverySolverConvergesToTheDirectSolutionOnTheSameFactors) {
     options.tolerance = 1e-10;
     options.clusters = false;  // the very same factors: every patch shoots alone
     TransportMatrix system(mesh, factors, options);
-    std::vector<glm::dvec3> direct = system.solveDirect();
+    std::vector<glm::dvec3> byLU = system.solveByLU();
 
     ProgressiveSolver progressive(mesh, factors, options);
     progressive.run();
     EXPECT_EQ(progressive.grey(), c.grey);
-    EXPECT_LT(relativeError(mesh, progressive.radiosity(), direct), 1e-8);
+    EXPECT_LT(relativeError(mesh, progressive.radiosity(), byLU), 1e-8);
 
     double jacobi = 1, gaussSeidel = 1;
     system.solveJacobi(400, [&](int, const std::vector<glm::dvec3>& B) {
-      jacobi = relativeError(mesh, B, direct);
+      jacobi = relativeError(mesh, B, byLU);
       return jacobi > 1e-10;
     });
     system.solveGaussSeidel(400, [&](int, const std::vector<glm::dvec3>& B) {
-      gaussSeidel = relativeError(mesh, B, direct);
+      gaussSeidel = relativeError(mesh, B, byLU);
       return gaussSeidel > 1e-10;
     });
     EXPECT_LT(jacobi, 1e-9);
     EXPECT_LT(gaussSeidel, 1e-9);
-    for (const auto& b : direct) EXPECT_TRUE(b.x >= 0 && b.y >= 0 && b.z >= 0);
+    for (const auto& b : byLU) EXPECT_TRUE(b.x >= 0 && b.y >= 0 && b.z >= 0);
   }
 }
 
@@ -446,7 +446,7 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
     for (auto& m : scene.materials) m.reflectance = glm::dvec3(rho);
     PatchMesh mesh = buildPatchMesh(scene, {0.4, 0.4});
     HemicubeFactors factors(mesh, 64, scene.diagonal(), 1);
-    std::vector<glm::dvec3> B = TransportMatrix(mesh, factors, SolverOptions{}).solveDirect();
+    std::vector<glm::dvec3> B = TransportMatrix(mesh, factors, SolverOptions{}).solveByLU();
     glm::dvec3 power(0.0), emitted(0.0);
     for (int e = 0; e < mesh.elementCount(); ++e) {
       power += mesh.area(e) * B[e];
@@ -458,16 +458,17 @@ TEST(FurnaceTest, GeneralisedFurnaceHoldsOnHemicubeFactors) {
 }
 
 
-/// The furnace (oracles.md §4): a closed cube, 8×8 square elements per face (each two
+/// The furnace (oracles.md §4): a closed cube, 4×4 square elements per face (each two
 /// triangles; the squares are the patches), uniform ρ and emission E = 1 → B = E/(1−ρ) at
-/// every element. Hemicube factors at R = 256 from 64 stratified points per square; the
+/// every element. Hemicube factors at R = 128 from 64 stratified points per square (as many
+/// pixels per square as 8×8 squares at R = 256, a sixteenth of the hemicubes' work); the
 /// system is solved directly on exactly those factors (the progressive solver converges to
-/// the same solution: ReferenceTest.EverySolverConvergesToTheDirectSolutionOnTheSameFactors). What is left is the
+/// the same solution: ReferenceTest.EverySolverConvergesToTheLUSolutionOnTheSameFactors). What is left is the
 /// proximity error of point-sampled shooters next to the cube's edges.
 void furnace(bool refine) {
-  constexpr int kGrid = 8;
+  constexpr int kGrid = 4;
   constexpr int kSamplesPerSquare = 64;
-  constexpr int kResolution = 256;
+  constexpr int kResolution = 128;
   Scene scene = loadScene(kScenes + "furnace.json");  // unit cube, E = 1 everywhere
   for (auto& surface : scene.surfaces) {
     Ring q = surface.polygons[0].outer;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/solve_support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

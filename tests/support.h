@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 
 namespace rad::test {
 

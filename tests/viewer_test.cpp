@@ -16,13 +16,14 @@
 #include <iostream>
 #include <map>
 
-#include "display/raster.h"
-#include "display/viewer.h"
-#include "mesh/color.h"
-#include "mesh/error.h"
-#include "mesh/ply_writer.h"
-#include "mesh/result_file.h"
+#include "display/raster/raster.h"
+#include "display/viewer/viewer.h"
+#include "mesh/base/color.h"
+#include "mesh/base/error.h"
+#include "mesh/base/ply_writer.h"
+#include "mesh/results/result_file.h"
 #include "tests/support.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad::viewer {
 namespace {

@@ -13,14 +13,14 @@
 
 #include <glm/common.hpp>
 
-#include "mesh/error.h"
-#include "mesh/output_file.h"
+#include "mesh/base/error.h"
+#include "mesh/base/output_file.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/reference_points.h"
+#include "mesh/results/reference_points.h"
 #include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/cli/svg_plot.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
 #include "radiosity/true_error.h"
@@ -182,7 +182,7 @@ std::vector<Curve> variantCurves(const ConvergenceOptions& o, Scene scene, const
   const MeshedScene meshed = meshQuietly(std::move(scene), uniformFlags(o.flags));
   const PatchMesh& mesh = meshed.mesh;
   const TrueError truth(mesh, meshed.scene, points, o.reference);
-  const SolverOptions options = solverOptions(meshed.settings, meshed.mesh.patches.size());
+  const SolverOptions options = solverOptions(meshed);
   std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(meshed, 1);
   auto t0 = std::chrono::steady_clock::now();
   TransportMatrix system(mesh, *factors, options);
@@ -220,8 +220,8 @@ std::vector<Rung> ladder(const SolverBlock& user, const Scene& scene) {
           rung("adaptive off", user, [](SolverBlock& f) { f.adaptive = false; }),
           rung("elements x1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge * 1.6; }),
           rung("elements /1.6", user, [&](SolverBlock& f) { f.maxElementEdge = edge / 1.6; }),
-          rung("hemicube R/2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution / 2; }),
-          rung("hemicube Rx2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.hemicubeResolution * 2; }),
+          rung("hemicube R/2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.shooting(defaults.finalGather).hemicubeResolution / 2; }),
+          rung("hemicube Rx2", user, [&](SolverBlock& f) { f.hemicubeResolution = defaults.shooting(defaults.finalGather).hemicubeResolution * 2; }),
           rung("4 points per patch", user, [&](SolverBlock& f) { f.shooterSamples = 4 * defaults.shooterSamples; }),
           rung("emitter points /4", user,
                [&](SolverBlock& f) { f.emitterSamples = std::max(1, defaults.emitterSamples / 4); })};
@@ -261,7 +261,7 @@ void solveRecording(RadiositySolve& solve, const MeshedScene& meshed, const True
   while (solve.step())
     if (rowDue(solver.shots(), next)) record();
   record();
-  if (meshed.gather) addGathered(c, solve, meshed, truth, meshing);
+  if (meshed.gather.on) addGathered(c, solve, meshed, truth, meshing);
 }
 
 /// A rung solved as `radiosity solve` solves (all workers), its time counting meshing, rays

@@ -9,12 +9,13 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 #include "mesh/patch_mesh.h"
 #include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
-#include "radiosity/hemicube.h"
-#include "radiosity/point_polygon.h"
+#include "radiosity/formfactors/hemicube.h"
+#include "radiosity/formfactors/point_polygon.h"
+#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad::cli {
 namespace {
@@ -116,7 +117,7 @@ Viewpoint pointViewpoint(const FormFactorOptions& o) {
 /// The factor of the surface drawn `alone` on its own hemicube: its pixels when nothing occludes it.
 double aloneFactor(const HemicubeGeometry& alone, const Settings& settings, const Scene& scene,
                    const Viewpoint& view, double rotation) {
-  Hemicube single(alone, settings.hemicubeResolution, scene.diagonal());
+  Hemicube single(alone, settings.shooting(settings.finalGather).hemicubeResolution, scene.diagonal());
   FormFactors ffAlone;
   single.compute(view.x, view.n, rotation, ffAlone);
   return std::accumulate(ffAlone.factors.begin(), ffAlone.factors.end(), 0.0);
@@ -166,7 +167,7 @@ nlohmann::ordered_json surfaceRow(const Scene& scene, const PatchMesh& mesh, con
 
 /// The hemicube's settings and the full hemicube's totals.
 void addTotals(nlohmann::ordered_json& out, const PatchMesh& mesh, const Settings& settings, const FormFactors& ff) {
-  out["hemicube_resolution"] = settings.hemicubeResolution;
+  out["hemicube_resolution"] = settings.shooting(settings.finalGather).hemicubeResolution;
   out["seed"] = settings.seed;
   out["elements"] = mesh.elementCount();
   out["sky"] = ff.sky;
@@ -199,7 +200,7 @@ std::vector<double> perSurfaceFactors(const FormFactors& ff, const PatchMesh& me
 FormFactors fullFactors(const Scene& scene, const PatchMesh& mesh, const Settings& settings, const Viewpoint& view,
                         double rotation) {
   HemicubeGeometry all = HemicubeGeometry::fromMesh(mesh);
-  Hemicube hemicube(all, settings.hemicubeResolution, scene.diagonal());
+  Hemicube hemicube(all, settings.shooting(settings.finalGather).hemicubeResolution, scene.diagonal());
   FormFactors ff;
   hemicube.compute(view.x, view.n, rotation, ff, view.excluded);
   return ff;

@@ -5,9 +5,10 @@
 #include <memory>
 #include <tuple>
 
-#include "mesh/number_text.h"
-#include "mesh/parallel.h"
+#include "mesh/base/number_text.h"
+#include "mesh/base/parallel.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 
@@ -130,19 +131,19 @@ void printAdaptive(const Settings& settings, const AdaptiveStats& adaptive) {
 
 /// What the final gather will do.
 std::string gatherLine(const MeshedScene& meshed) {
-  if (!meshed.gather) return meshed.settings.finalGather ? "skipped (over its budget)" : "off";
+  if (!meshed.gather.on) return meshed.settings.finalGather ? "skipped (over its budget)" : "off";
   const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
   const std::string others = meshed.base ? " (the other " + std::to_string(meshed.mesh.mesh.n_vertices() - drawn.mesh.n_vertices()) +
                                                ", added by refinement, interpolate)" : "";
   char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.2g", meshed.gatherEstimate.seconds(workerCount(0)));
+  std::snprintf(seconds, sizeof seconds, "%.2g", meshed.gather.estimate.seconds(workerCount(0)));
   return "at " + std::to_string(drawn.mesh.n_vertices()) + " vertices" + others + " over " +
          std::to_string(drawn.elementCount()) + " elements, hemicubes " + std::to_string(meshed.settings.gatherResolution) +
-         ", drawing " + shortNumberText(std::round(meshed.gatherEstimate.drawn)) + " triangles and resolving " +
-         shortNumberText(std::round(meshed.gatherEstimate.located)) + " pixels to elements in all (about " +
+         ", drawing " + shortNumberText(std::round(meshed.gather.estimate.drawn)) + " triangles and resolving " +
+         shortNumberText(std::round(meshed.gather.estimate.located)) + " pixels to elements in all (about " +
          seconds + " s), keeping " +
-         shortNumberText(std::round(meshed.gatherEstimate.factors)) + " factors" +
-         (meshed.gatherEstimate.iterates(GatherOptions{}) ? "" : " (over its memory: gathered once)");
+         shortNumberText(std::round(meshed.gather.estimate.factors)) + " factors" +
+         (meshed.gather.estimate.iterates(GatherOptions{}) ? "" : " (over its memory: gathered once)");
 }
 
 /// Emitters, mesh quality, refinement, the direct light and the time taken.

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "mesh/error.h"
-#include "mesh/progress.h"
+#include "mesh/base/error.h"
+#include "mesh/base/progress.h"
 #include "radiosity/cli/commands.h"
 
 namespace rad::cli {

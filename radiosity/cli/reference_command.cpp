@@ -10,12 +10,12 @@
 #include <glm/geometric.hpp>
 #include <unistd.h>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 #include "mesh/facing.h"
-#include "mesh/input_file.h"
-#include "mesh/number_text.h"
-#include "mesh/output_file.h"
-#include "mesh/reference_points.h"
+#include "mesh/base/input_file.h"
+#include "mesh/base/number_text.h"
+#include "mesh/base/output_file.h"
+#include "mesh/results/reference_points.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/pathtrace/path_tracer.h"
 

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "mesh/error.h"
-#include "mesh/output_file.h"
+#include "mesh/base/error.h"
+#include "mesh/base/output_file.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/cli/solve_report.h"
 #include "radiosity/reference_solver.h"
@@ -59,7 +59,7 @@ std::vector<glm::dvec3> fixedPoint(const std::string& which, const MeshedScene& 
   if (which.empty()) return {};
   if (which != "direct") return readResultRadiosity(which, scene.mesh, scene.scene.diagonal());
   const std::unique_ptr<HemicubeFactors> factors = hemicubeFactors(scene);
-  return TransportMatrix(scene.mesh, *factors, solverOptions(scene.settings, scene.mesh.patches.size())).solveDirect();
+  return TransportMatrix(scene.mesh, *factors, solverOptions(scene)).solveByLU();
 }
 
 /// A history row's true error: the RMS, and per channel the RMS and mean.

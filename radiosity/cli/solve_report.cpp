@@ -4,16 +4,16 @@ namespace rad::cli {
 namespace {
 
 /// The settings of shooting: hemicubes, stop conditions, shooting points and the factor cache.
-void addShootingSettings(Json& s, const Settings& settings) {
-  s["hemicube_resolution"] = settings.hemicubeResolution;
-  s["emitter_hemicube_resolution"] = settings.emitterHemicubeResolution;
-  s["tolerance"] = settings.tolerance;
+void addShootingSettings(Json& s, const Settings& settings, const Shooting& shooting) {
+  s["hemicube_resolution"] = shooting.hemicubeResolution;
+  s["emitter_hemicube_resolution"] = shooting.emitterHemicubeResolution;
+  s["tolerance"] = shooting.tolerance;
   s["seed"] = settings.seed;
   s["max_shots"] = settings.maxShots;
-  s["shots_per_patch"] = settings.shotsPerPatch;
+  s["shots_per_patch"] = shooting.shotsPerPatch;
   s["time_limit"] = settings.timeLimit;
   s["overshoot"] = settings.overshoot;
-  s["emitter_samples"] = settings.emitterSamples;
+  s["emitter_samples"] = shooting.emitterSamples;
   s["shooter_samples"] = settings.shooterSamples;
   s["proximity_samples"] = settings.proximitySamples;
   s["cluster_shooters"] = settings.clusterShooters;
@@ -32,13 +32,14 @@ void addRefinementSettings(Json& s, const Settings& settings) {
   s["max_elements"] = settings.maxElements;
 }
 
-Json settingsBlock(const Settings& settings) {
+/// The settings, shooting as the gather's plan says (its start, or the answer's).
+Json settingsBlock(const Settings& settings, const Shooting& shooting) {
   Json s;
   s["max_element_edge"] = settings.maxElementEdge;
   s["max_patch_edge"] = settings.maxPatchEdge;
   s["cut_contacts"] = settings.cutContacts;
   s["fix_facing"] = settings.fixFacing;
-  addShootingSettings(s, settings);
+  addShootingSettings(s, settings, shooting);
   addRefinementSettings(s, settings);
   return s;
 }
@@ -231,7 +232,7 @@ Json solveReport(const MeshedScene& scene, const RadiositySolve& solve, const So
   const ProgressiveSolver& solver = solve.solver();
   Json report;
   report["scene"] = scene.scene.path;
-  report["settings"] = settingsBlock(scene.settings);
+  report["settings"] = settingsBlock(scene.settings, scene.gather.shooting);
   report["adaptive"] = adaptiveBlock(scene.adaptive);
   report["direct_light"] = directLightBlock(scene.direct.get());
   report["counts"] = countsBlock(scene, solver);

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/stage_times.h"
+#include "mesh/base/stage_times.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
 

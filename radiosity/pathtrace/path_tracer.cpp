@@ -6,7 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/parallel.h"
+#include "mesh/base/parallel.h"
 
 namespace rad::pathtrace {
 namespace {

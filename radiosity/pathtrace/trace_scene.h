@@ -10,7 +10,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "mesh/scene.h"
+#include "mesh/scene/scene.h"
 
 namespace rad::pathtrace {
 

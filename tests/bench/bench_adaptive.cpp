@@ -20,13 +20,13 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/color.h"
-#include "mesh/scene.h"
+#include "mesh/base/color.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/solve.h"
-#include "radiosity/point_polygon.h"
-#include "radiosity/progressive_solver.h"
+#include "radiosity/formfactors/point_polygon.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
 
 namespace {

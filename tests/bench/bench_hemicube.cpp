@@ -19,8 +19,8 @@
 #include <tuple>
 
 #include "mesh/patch_mesh.h"
-#include "mesh/scene.h"
-#include "radiosity/hemicube.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/formfactors/hemicube.h"
 #include "tests/bench/osmesa_item_buffer.h"
 #include "tests/room_grid.h"
 

@@ -1,6 +1,6 @@
 // Benchmarks of the raster core: item+depth drawing of random small triangles, and a
 // hemicube-like workload (5 faces of one view point, most triangles outside each face).
-#include "display/raster.h"
+#include "display/raster/raster.h"
 
 #include <benchmark/benchmark.h>
 

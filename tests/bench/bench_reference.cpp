@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/pathtrace/path_tracer.h"
 
 using namespace rad;

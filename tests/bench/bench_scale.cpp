@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "mesh/error.h"
-#include "mesh/scene.h"
-#include "mesh/stage_times.h"
+#include "mesh/base/error.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "mesh/base/stage_times.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 

@@ -6,11 +6,11 @@
 
 #include <memory>
 
-#include "display/viewer.h"
+#include "display/viewer/viewer.h"
 #include "mesh/patch_mesh.h"
-#include "mesh/result_file.h"
-#include "mesh/scene.h"
-#include "radiosity/progressive_solver.h"
+#include "mesh/results/result_file.h"
+#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
 
 namespace {

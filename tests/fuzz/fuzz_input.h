@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-#include "mesh/error.h"
+#include "mesh/base/error.h"
 
 namespace rad::fuzz {
 

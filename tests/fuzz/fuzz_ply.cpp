@@ -1,5 +1,5 @@
-// Fuzz target: the PLY mesh reader (mesh/mesh_file.h), as a scene's mesh surface reads it.
-#include "mesh/mesh_file.h"
+// Fuzz target: the PLY mesh reader (mesh/scene/readers/mesh_file.h), as a scene's mesh surface reads it.
+#include "mesh/scene/readers/mesh_file.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
-// Fuzz target: the reference CSV (mesh/reference_points.h), as solve --reference reads it.
-#include "mesh/reference_points.h"
+// Fuzz target: the reference CSV (mesh/results/reference_points.h), as solve --reference reads it.
+#include "mesh/results/reference_points.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

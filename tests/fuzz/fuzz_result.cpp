@@ -1,5 +1,5 @@
-// Fuzz target: a result PLY as radview and --fixed-point read it (mesh/result_file.h).
-#include "mesh/result_file.h"
+// Fuzz target: a result PLY as radview and --fixed-point read it (mesh/results/result_file.h).
+#include "mesh/results/result_file.h"
 #include "tests/fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,6 +1,6 @@
-// Fuzz target: the scene loader (mesh/scene.h) on the input as JSON text, mesh files resolved
+// Fuzz target: the scene loader (mesh/scene/scene.h) on the input as JSON text, mesh files resolved
 // against tests/data (so that the seeds' box.obj and friends are found).
-#include "mesh/scene.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "tests/fuzz/fuzz_input.h"
 
 #ifndef RAD_DATA_DIR

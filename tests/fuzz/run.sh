@@ -17,7 +17,7 @@ declare -A seeds=(
   [off]="$root/tests/data/*.off $root/tests/data/bad/*.off"
   [gltf]="$root/tests/data/*.gltf $root/tests/data/*.glb"
   [result]="$root/tests/data/*.ply $root/tests/data/bad/result_*.ply"
-  [reference]="$root/docs/cornell_reference.csv $root/tests/data/bad/bad_reference.csv"
+  [reference]="$root/tests/data/references/cornell_reference.csv $root/tests/data/bad/bad_reference.csv"
 )
 failed=0
 for target in "${targets[@]}"; do
