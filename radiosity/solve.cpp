@@ -97,6 +97,18 @@ std::shared_ptr<GatherAhead> startGatherAhead(const MeshedScene& s, const Gather
   return std::make_shared<GatherAhead>(std::move(unrefined), s.scene.diagonal(), options);
 }
 
+/// The direct light at the vertices by rays and, with it, adaptive refinement (`unrefined`: a
+/// copy of the mesh, or null without refinement).
+void lightAndRefine(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined) {
+  s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
+  RAD_CHECK(s.direct->enabled());
+  if (s.settings.adaptive)
+    refine(s, std::move(unrefined));
+  else
+    s.direct->update(s.mesh);
+  if (!s.settings.vertexDirect) s.direct.reset();
+}
+
 /// The direct light at the vertices by rays (castRays) and, with it, adaptive refinement; then
 /// the final gather's plan, its cost estimated over the mesh before refinement (its hemicubes
 /// rendering meanwhile) and its budget checked with the time the rays left.
@@ -108,15 +120,7 @@ void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   GatherEstimate estimate{};
   if (s.settings.finalGather) estimate = estimateGather(s.mesh, s.scene.diagonal(), gatherOptions(s.settings, s.started));
   std::shared_ptr<GatherAhead> ahead = startGatherAhead(s, estimate, unrefined, options);
-  if (rays) {
-    s.direct = std::make_unique<DirectLight>(s.mesh, s.scene.diagonal());
-    RAD_CHECK(s.direct->enabled());
-    if (s.settings.adaptive)
-      refine(s, std::move(unrefined));
-    else
-      s.direct->update(s.mesh);
-    if (!s.settings.vertexDirect) s.direct.reset();
-  }
+  if (rays) lightAndRefine(s, std::move(unrefined));
   s.gather = planGather(s.settings, estimate, s.mesh.patches.size(), timeLeft(s), std::move(ahead));
   if (!s.gather.leftOut.empty()) s.mesh.warnings.push_back(s.gather.leftOut);
 }
