@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "mesh/contact_cutter.h"
 #include "mesh/coplanar_pieces.h"
+#include "mesh/piece_boxes.h"
 #include "mesh/scene/geometry.h"
 #include "mesh/base/progress.h"
 #include "mesh/solid_probe.h"
@@ -96,121 +96,6 @@ std::vector<Contact3> contactsOf(const PointTable& table, const Piece& r, bool r
   sortAlong(on, glm::normalize(glm::cross(nr, ns)));
   return stretchesIn(table, s, on, tolerance);
 }
-
-/// An axis-aligned box.
-struct Box {
-  glm::dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};
-};
-
-/// Whether the boxes overlap.
-bool boxesMeet(const Box& a, const Box& b) {
-  return !glm::any(glm::lessThan(b.hi, a.lo)) && !glm::any(glm::lessThan(a.hi, b.lo));
-}
-
-/// Each piece's bounding box, grown by `pad`.
-std::vector<Box> paddedBoxes(const PointTable& table, const std::vector<Piece>& pieces, double pad) {
-  std::vector<Box> boxes(pieces.size());
-  for (size_t p = 0; p < pieces.size(); ++p)
-    for (const auto& ring : pieces[p].rings)
-      for (int id : ring) {
-        boxes[p].lo = glm::min(boxes[p].lo, table[id] - pad);
-        boxes[p].hi = glm::max(boxes[p].hi, table[id] + pad);
-      }
-  return boxes;
-}
-
-/// The box around the boxes.
-Box enclosing(const std::vector<Box>& boxes) {
-  Box all;
-  for (const Box& b : boxes) all.lo = glm::min(all.lo, b.lo), all.hi = glm::max(all.hi, b.hi);
-  return all;
-}
-
-/// The median of the boxes' largest sides.
-double medianSide(const std::vector<Box>& boxes) {
-  std::vector<double> sides;
-  for (const Box& b : boxes) {
-    const glm::dvec3 d = b.hi - b.lo;
-    sides.push_back(std::max({d.x, d.y, d.z}));
-  }
-  return median(std::move(sides));
-}
-
-/// The pieces' boxes in a hash over the scene's box cut into cells × cells × cells cells
-/// (each axis divided alike, so cells are boxes, not cubes): the hash works in those grid
-/// coordinates. Candidates come cell by cell in x, y, z order (then the large pieces), which
-/// orders the contact lines and so decides which new point is made first.
-///
-/// Two cells per axis per cube root of the pieces, or as many as make a cell the size of a
-/// typical piece if that is more (a finely tessellated model, 300 000 triangles a few
-/// centimetres across, filed thousands of its faces per cell, and each visited them all),
-/// at most kMaxCells. A piece that would be filed in more than kMaxCellsPerPiece cells (a
-/// room's floor in a fine grid) is large: large pieces go in a coarse grid of world cubes
-/// (2∛n a side, at most kMaxCoarseCells), which every piece visits too, and a large piece's
-/// candidates among the others are found once, from their side.
-class PieceBoxes {
- public:
-  static constexpr double kMaxCells = 1024;
-  static constexpr double kMaxCellsPerPiece = 512;
-  static constexpr double kMaxCoarseCells = 64;
-
-  explicit PieceBoxes(const std::vector<Box>& boxes) : boxes_(boxes) {
-    const Box scene = enclosing(boxes);
-    const glm::dvec3 extent = scene.hi - scene.lo;
-    const double widest = std::max({extent.x, extent.y, extent.z, 1e-300});
-    const double perRoot = 2 * std::cbrt(double(boxes.size()));
-    cells_ = int(std::clamp(std::max(perRoot, widest / medianSide(boxes)), 1.0, kMaxCells));
-    lo_ = scene.lo;
-    cell_ = glm::max(extent / double(cells_), glm::dvec3(1e-300));
-    coarse_ = SpatialHash(widest / std::clamp(perRoot, 1.0, kMaxCoarseCells), scene.lo);
-    large_.assign(boxes.size(), false);
-    for (size_t p = 0; p < boxes.size(); ++p) {
-      const glm::dvec3 n = glm::floor(grid(boxes[p].hi)) - glm::floor(grid(boxes[p].lo)) + 1.0;
-      large_[p] = n.x * n.y * n.z > kMaxCellsPerPiece;
-      if (large_[p])
-        coarse_.insert(boxes[p].lo, boxes[p].hi, int(p));
-      else
-        hash_.insert(grid(boxes[p].lo), grid(boxes[p].hi), int(p));
-    }
-    // Each large piece's candidates among the small ones, each once, in piece order.
-    std::vector<int> last(boxes.size(), -1);
-    for (size_t s = 0; s < boxes.size(); ++s) {
-      if (large_[s]) continue;
-      coarse_.visit(boxes[s].lo, boxes[s].hi, [&](int r) {
-        if (last[size_t(r)] == int(s) || !boxesMeet(boxes[s], boxes[size_t(r)])) return;
-        last[size_t(r)] = int(s);
-        smallOfLarge_[r].push_back(int(s));
-      });
-    }
-  }
-
-  /// Calls f(s) for the pieces s whose boxes may meet piece p's (s may come more than once):
-  /// those filed in a cell p's box touches, and the large ones near it.
-  template <class F>
-  void visit(size_t p, F&& f) const {
-    if (large_[p]) {
-      auto it = smallOfLarge_.find(int(p));
-      if (it != smallOfLarge_.end())
-        for (int s : it->second) f(s);
-    } else {
-      hash_.visit(grid(boxes_[p].lo), grid(boxes_[p].hi), f);
-    }
-    coarse_.visit(boxes_[p].lo, boxes_[p].hi, f);
-  }
-
- private:
-  /// x in grid coordinates, clamped to the grid.
-  glm::dvec3 grid(const glm::dvec3& x) const {
-    return glm::clamp((x - lo_) / cell_, 0.0, double(cells_ - 1));
-  }
-
-  const std::vector<Box>& boxes_;
-  int cells_ = 1;
-  glm::dvec3 lo_{0.0}, cell_{1.0};
-  SpatialHash hash_{1.0}, coarse_{1.0};
-  std::vector<bool> large_;
-  std::unordered_map<int, std::vector<int>> smallOfLarge_;
-};
 
 /// What every step of cutAtContacts shares: the pieces as they were before any cut (contacts
 /// come from the uncut pieces), their boxes padded by the tolerance, and the points made.

@@ -1,3 +1,5 @@
+// glTF 2.0 files ▸ groups of faces: the file loaded through tinygltf, its nodes placed down the
+// hierarchy, and each primitive's positions and indices read from its accessors.
 #include "mesh/scene/readers/gltf_reader.h"
 
 #include <algorithm>
@@ -7,27 +9,20 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <tiny_gltf.h>
 
 #include "mesh/scene/readers/coplanar_faces.h"
 #include "mesh/base/error.h"
 #include "mesh/base/input_file.h"
-#include "mesh/scene/readers/texture_mean.h"
+#include "mesh/scene/readers/gltf_internal.h"
 
-namespace rad {
+namespace rad::gltf {
 namespace {
 
-/// A material whose metallicFactor is above this is a metal: radiosity keeps its diffuse part.
-constexpr double kMetallic = 0.5;
-/// A base colour of 1 (white) would reflect all light and the solve never converge: its
-/// brightest channel becomes this, the others in proportion.
-constexpr double kMaxReflectance = 0.95;
 /// At most this many triangles per file: far beyond what a radiosity solve meshes in minutes,
 /// and a bound on what a small file instancing a mesh many times can make us allocate.
 constexpr size_t kMaxTriangles = size_t(1) << 22;
@@ -119,24 +114,22 @@ tinygltf::Model loadModel(const std::string& path) {
   return model;
 }
 
+}  // namespace
+
 // ---- Small readers of glTF values --------------------------------------------------------------
 
-/// Item `index` of a glTF array (`what`, for messages, at `where`), checked to exist.
-template <class T>
-const T& item(const std::vector<T>& items, int index, const std::string& what, const std::string& where) {
-  if (index < 0 || size_t(index) >= items.size())
-    throw inputError(where, "a " + what + " index from 0 to " + std::to_string(int(items.size()) - 1),
-                     std::to_string(index));
-  return items[size_t(index)];
-}
-
-/// `n` finite numbers (or none: the default) at `where`.
 void checkNumbers(const std::vector<double>& values, size_t n, const std::string& where) {
   if (!values.empty() && values.size() != n)
     throw inputError(where, std::to_string(n) + " numbers", std::to_string(values.size()));
   for (double v : values)
     if (!std::isfinite(v)) throw inputError(where, "finite numbers", std::to_string(v));
 }
+
+std::string nameOr(const std::string& name, const std::string& kind, int index) {
+  return name.empty() ? kind + std::to_string(index) : name;
+}
+
+namespace {
 
 /// The node's own transform: its matrix, or translation × rotation × scale (glTF 2.0 §3.5.3).
 glm::dmat4 localTransform(const tinygltf::Node& n, const std::string& where) {
@@ -209,130 +202,9 @@ bool isSurface(int mode) {
   return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
-/// Names for messages and groups: the object's own, or `kind` and its index.
-std::string nameOr(const std::string& name, const std::string& kind, int index) {
-  return name.empty() ? kind + std::to_string(index) : name;
-}
-
-/// The items in a list: a, b.
-std::string joined(const std::set<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
-/// A list of names in quotes: 'a', 'b'.
-std::string quoted(const std::set<std::string>& names) {
-  std::set<std::string> inQuotes;
-  for (const auto& n : names) inQuotes.insert("'" + n + "'");
-  return joined(inQuotes);
-}
-
-// ---- Materials ---------------------------------------------------------------------------------
-
-/// A glTF material as a diffuse solver sees it.
-struct GltfMaterial {
-  std::string name;
-  glm::dvec3 kd{1.0}, ke{0.0};  ///< reflectance; emitted radiance
-  bool textured = false, metallic = false, transmissive = false, white = false;
-  std::string unreadTexture;  ///< why its base-colour texture could not be read, if so
-};
-
-/// baseColorFactor's RGB (white when absent), each in [0, 1].
-glm::dvec3 baseColourFactor(const tinygltf::PbrMetallicRoughness& pbr, const std::string& where) {
-  checkNumbers(pbr.baseColorFactor, 4, where);
-  if (pbr.baseColorFactor.empty()) return glm::dvec3(1.0);
-  for (int c = 0; c < 3; ++c)
-    if (!(pbr.baseColorFactor[size_t(c)] >= 0 && pbr.baseColorFactor[size_t(c)] <= 1))
-      throw inputError(where, "numbers in [0, 1]", std::to_string(pbr.baseColorFactor[size_t(c)]));
-  return glm::make_vec3(pbr.baseColorFactor.data());
-}
-
-/// The number `key` of the material's extension `extension` (`otherwise` when absent), finite
-/// and >= 0.
-double extensionNumber(const tinygltf::Material& m, const std::string& extension, const std::string& key,
-                       double otherwise, const std::string& where) {
-  const auto found = m.extensions.find(extension);
-  if (found == m.extensions.end() || !found->second.Has(key)) return otherwise;
-  const tinygltf::Value& v = found->second.Get(key);
-  const double x = v.IsNumber() ? v.GetNumberAsDouble() : -1;
-  if (!(std::isfinite(x) && x >= 0))
-    throw inputError(where + ": " + extension + "." + key, "a finite number >= 0",
-                     v.IsNumber() ? std::to_string(x) : "not a number");
-  return x;
-}
-
-/// The emitted radiance: emissiveFactor × KHR_materials_emissive_strength's emissiveStrength.
-glm::dvec3 emittedRadiance(const tinygltf::Material& m, const std::string& where) {
-  checkNumbers(m.emissiveFactor, 3, where + ": emissiveFactor");
-  const glm::dvec3 factor = m.emissiveFactor.empty() ? glm::dvec3(0.0) : glm::make_vec3(m.emissiveFactor.data());
-  if (!(factor.x >= 0 && factor.y >= 0 && factor.z >= 0))
-    throw inputError(where + ": emissiveFactor", "numbers >= 0", "a negative one");
-  return factor * extensionNumber(m, "KHR_materials_emissive_strength", "emissiveStrength", 1.0, where);
-}
-
-/// A base colour of 1 or more in some channel scaled so that its brightest is kMaxReflectance;
-/// whether it was.
-bool capWhite(glm::dvec3& kd) {
-  const double brightest = std::max({kd.x, kd.y, kd.z});
-  if (brightest < 1) return false;
-  kd *= kMaxReflectance / brightest;
-  return true;
-}
+}  // namespace
 
 // ---- The scene ---------------------------------------------------------------------------------
-
-/// A node placed in the scene: its index and its world transform.
-struct PlacedNode {
-  int node = 0;
-  glm::dmat4 world{1.0};
-};
-
-/// A bounded run of bytes in a buffer.
-struct Bytes {
-  const unsigned char* data = nullptr;
-  size_t size = 0;
-};
-
-/// The glTF file read into groups of faces by node and material, with what was approximated.
-class GltfReader {
- public:
-  GltfReader(tinygltf::Model model, std::string path) : model_(std::move(model)), path_(std::move(path)) {}
-
-  /// Every mesh primitive of the placed nodes, as groups in the order first met.
-  std::vector<MeshFileGroup> read() {
-    for (const PlacedNode& placed : placedNodes()) addNode(placed);
-    return std::move(groups_);
-  }
-
-  /// What was approximated or left out, a sentence each.
-  std::vector<std::string> warnings() const;
-
- private:
-  std::vector<int> rootNodes() const;
-  std::vector<PlacedNode> placedNodes() const;
-  void addNode(const PlacedNode& placed);
-  void addPrimitive(const PlacedNode& placed, const tinygltf::Primitive& p, const std::string& label,
-                    const std::string& meshName, size_t k);
-  Bytes viewBytes(int view, const std::string& where) const;
-  Bytes accessorBytes(const tinygltf::Accessor& a, size_t elementBytes, size_t& stride, const std::string& where) const;
-  std::vector<glm::dvec3> positions(const tinygltf::Primitive& p, const std::string& where) const;
-  std::vector<uint64_t> indices(const tinygltf::Primitive& p, size_t vertices, const std::string& where) const;
-  const GltfMaterial& material(int index);
-  GltfMaterial readMaterial(int index) const;
-  Bytes imageBytes(int texture, const std::string& where, std::string& label) const;
-  void applyTexture(int texture, const std::string& where, GltfMaterial& m) const;
-  MeshFileGroup& group(const std::string& label, const GltfMaterial& m, int index);
-
-  tinygltf::Model model_;
-  std::string path_;
-  std::vector<MeshFileGroup> groups_;
-  std::map<std::pair<std::string, int>, size_t> groupOf_;  ///< (node label, material) -> group
-  std::map<int, GltfMaterial> materials_;                   ///< read once, on first use
-  std::map<int, size_t> facesOf_;                           ///< faces per material
-  std::set<std::string> pointsAndLines_;                    ///< meshes with primitives left out
-  size_t leftOut_ = 0, triangles_ = 0;
-};
 
 /// The default scene's root nodes; without one, every scene's; without scenes, the nodes no
 /// node names as a child.
@@ -486,61 +358,6 @@ std::vector<uint64_t> GltfReader::indices(const tinygltf::Primitive& p, size_t v
   return out;
 }
 
-/// Material `index` (-1: glTF's default, white), read on first use.
-const GltfMaterial& GltfReader::material(int index) {
-  auto found = materials_.find(index);
-  if (found == materials_.end()) found = materials_.emplace(index, readMaterial(index)).first;
-  return found->second;
-}
-
-/// Material `index` as a diffuse solver sees it: reflectance, emitted radiance, and what it
-/// approximates.
-GltfMaterial GltfReader::readMaterial(int index) const {
-  GltfMaterial out;
-  if (index < 0) {
-    out.name = "default";
-    out.white = capWhite(out.kd);
-    return out;
-  }
-  const tinygltf::Material& m = item(model_.materials, index, "material", path_ + ": primitive material");
-  out.name = nameOr(m.name, "material", index);
-  const std::string where = path_ + ": material '" + out.name + "'";
-  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-  out.kd = baseColourFactor(pbr, where + ": baseColorFactor");
-  if (pbr.baseColorTexture.index >= 0) applyTexture(pbr.baseColorTexture.index, where + ": baseColorTexture", out);
-  out.white = capWhite(out.kd);
-  out.ke = emittedRadiance(m, where);
-  out.metallic = pbr.metallicFactor > kMetallic;
-  out.transmissive = extensionNumber(m, "KHR_materials_transmission", "transmissionFactor", 0.0, where) > 0;
-  return out;
-}
-
-/// The encoded bytes of texture `texture`'s image (a file, a data URI or a buffer view; none
-/// when its file could not be read), and its name for messages in `label`.
-Bytes GltfReader::imageBytes(int texture, const std::string& where, std::string& label) const {
-  const tinygltf::Texture& t = item(model_.textures, texture, "texture", where);
-  const std::string at = where + ": texture " + std::to_string(texture) + ": source";
-  const tinygltf::Image& image = item(model_.images, t.source, "PNG or JPEG image", at);
-  label = image.uri.empty() ? "image " + std::to_string(t.source) : "'" + image.uri + "'";
-  if (image.bufferView >= 0) return viewBytes(image.bufferView, path_ + ": " + label + ": bufferView");
-  return {image.image.data(), image.image.size()};
-}
-
-/// The material's base colour times the linear mean colour of texture `texture`; when the image
-/// cannot be read or decoded (a texture missing beside a downloaded file), the factor alone,
-/// and why in `unreadTexture`. A texture the file names wrongly is an error.
-void GltfReader::applyTexture(int texture, const std::string& where, GltfMaterial& m) const {
-  std::string label;
-  const Bytes bytes = imageBytes(texture, where, label);
-  try {
-    if (bytes.size == 0) throw inputError(label, "an image file beside the glTF file", "none that could be read");
-    m.kd *= meanLinearColour(bytes.data, bytes.size, label);
-    m.textured = true;
-  } catch (const InputError& e) {
-    m.unreadTexture = e.what();
-  }
-}
-
 /// The group of (node label, material `index`), made on first use: "<label>/<material>".
 MeshFileGroup& GltfReader::group(const std::string& label, const GltfMaterial& m, int index) {
   const auto [found, added] = groupOf_.emplace(std::make_pair(label, index), groups_.size());
@@ -553,41 +370,12 @@ MeshFileGroup& GltfReader::group(const std::string& label, const GltfMaterial& m
   return groups_[found->second];
 }
 
-std::vector<std::string> GltfReader::warnings() const {
-  std::set<std::string> textured, unread, white, approximated;
-  size_t approximatedFaces = 0;
-  for (const auto& [index, m] : materials_) {
-    if (m.textured) textured.insert(m.name);
-    if (!m.unreadTexture.empty()) unread.insert("'" + m.name + "' (" + m.unreadTexture + ")");
-    if (m.white) white.insert(m.name);
-    if (m.metallic || m.transmissive) approximatedFaces += facesOf_.at(index);
-    if (m.metallic) approximated.insert(m.name + " (metallic)");
-    if (m.transmissive) approximated.insert(m.name + " (transmissive)");
-  }
-  std::vector<std::string> out;
-  if (!textured.empty())
-    out.push_back("materials " + quoted(textured) + ": reflectance is the mean colour of the base-colour texture "
-                  "times baseColorFactor (a radiosity solve keeps no texture detail)");
-  if (!unread.empty())
-    out.push_back("materials " + joined(unread) + ": base-colour texture not read, baseColorFactor alone is the "
-                  "reflectance (put the image beside the glTF file)");
-  if (!approximated.empty())
-    out.push_back(std::to_string(approximatedFaces) + " faces of materials " + quoted(approximated) +
-                  " treated as diffuse with their base colour (radiosity has no mirrors or glass; set metallicFactor "
-                  "to 0 and leave out KHR_materials_transmission to say so in the file)");
-  if (!white.empty())
-    out.push_back("materials " + quoted(white) + ": base colour 1 (white) would reflect all light; taken as "
-                  "reflectance 0.95 (hue kept); give a baseColorFactor below 1 to choose");
-  if (leftOut_)
-    out.push_back("left out " + std::to_string(leftOut_) + " primitives drawn as points or lines (not "
-                  "surfaces) in meshes " + quoted(pointsAndLines_));
-  return out;
-}
+}  // namespace rad::gltf
 
-}  // namespace
+namespace rad {
 
 std::vector<MeshFileGroup> readGltfFile(const std::string& path, std::vector<std::string>& warnings) {
-  GltfReader reader(loadModel(path), path);
+  gltf::GltfReader reader(gltf::loadModel(path), path);
   std::vector<MeshFileGroup> groups = reader.read();
   for (auto& g : groups) g.faces = mergeCoplanarFaces(g.faces);  // glTF has only triangles
   for (auto& w : reader.warnings()) warnings.push_back(std::move(w));

@@ -1,6 +1,6 @@
 #pragma once
 // Reading glTF 2.0 scenes (.gltf with its buffers and images, or .glb) through tinygltf, whose
-// types stay inside gltf_reader.cpp.
+// types stay inside the reader (gltf_reader.cpp, gltf_materials.cpp, gltf_internal.h).
 #include <string>
 #include <vector>
 
