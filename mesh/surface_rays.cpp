@@ -53,6 +53,32 @@ bool before(double t, int i, const std::optional<RayHit>& best) {
   return t < best->t || (t == best->t && i < best->polygon);
 }
 
+/// Embree's copy of a ray from `origin` along `dir`, from `after` along it (0 at the earliest).
+RTCRayHit floatRay(const glm::dvec3& origin, const glm::dvec3& dir, double after) {
+  RTCRayHit r{};
+  r.ray.org_x = float(origin.x), r.ray.org_y = float(origin.y), r.ray.org_z = float(origin.z);
+  r.ray.dir_x = float(dir.x), r.ray.dir_y = float(dir.y), r.ray.dir_z = float(dir.z);
+  r.ray.tnear = std::max(0.0f, floatBelow(after));
+  r.ray.tfar = HUGE_VALF;
+  r.ray.mask = ~0u;
+  r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return r;
+}
+
+/// An Embree device and scene, released with it (also when building the scene throws).
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  EmbreeScene() = default;
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+  ~EmbreeScene() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
 }  // namespace
 
 struct SurfaceRays::Scene {
@@ -77,24 +103,32 @@ struct SurfaceRays::Scene {
     std::optional<RayHit> best;
   };
 
+  /// The targets, the box round them and the slack, then Embree's scene.
   Scene(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided);
-  ~Scene();
 
+  /// A polygon's plane and box.
   static Target target(const Polygon& polygon, bool twoSided);
+  /// One user primitive per polygon: Embree asks for its box and leaves meeting it to
+  /// `intersect`.
   void build();
+  /// Embree's box of a polygon: its box widened by the slack, rounded outward to float.
   static void bounds(const RTCBoundsFunctionArguments* args);
+  /// Meets the polygon whose box Embree's ray entered, with the double ray of the context.
   static void intersect(const RTCIntersectFunctionNArguments* args);
+  /// The distances along the ray at which it enters the box round the targets (0 at the
+  /// earliest) and leaves it: in after out when it misses.
   std::pair<double, double> crossing(const Ray& ray) const;
   std::optional<RayHit> firstHit(const Ray& ray) const;
+  /// Whether the ray meets polygon i beyond `after` and before `best`; then t is where.
   bool meets(int i, const Ray& ray, const std::optional<RayHit>& best, double& t) const;
+  /// The hit on polygon i at t: its front when the ray comes against its normal.
   RayHit hit(int i, const Ray& ray, double t) const;
 
   const std::vector<Polygon>& polygons;
   std::vector<Target> targets;
   glm::dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};  ///< round every target, widened by `slack`
   double slack = 0;                        ///< how far Embree's boxes reach beyond the targets'
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  EmbreeScene embree;
 };
 
 SurfaceRays::Scene::Scene(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided)
@@ -105,11 +139,6 @@ SurfaceRays::Scene::Scene(const std::vector<Polygon>& polygons, const std::vecto
   slack = kFloatSlack * (std::max({far.x, far.y, far.z}) + glm::length(hi - lo));
   lo -= glm::dvec3(slack), hi += glm::dvec3(slack);
   build();
-}
-
-SurfaceRays::Scene::~Scene() {
-  if (scene) rtcReleaseScene(scene);
-  if (device) rtcReleaseDevice(device);
 }
 
 SurfaceRays::Scene::Target SurfaceRays::Scene::target(const Polygon& polygon, bool twoSided) {
@@ -123,25 +152,22 @@ SurfaceRays::Scene::Target SurfaceRays::Scene::target(const Polygon& polygon, bo
   return target;
 }
 
-/// One user primitive per polygon: Embree asks for its box and leaves meeting it to the
-/// callback.
 void SurfaceRays::Scene::build() {
-  device = rtcNewDevice(nullptr);
-  scene = rtcNewScene(device);
-  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+  embree.device = rtcNewDevice(nullptr);
+  embree.scene = rtcNewScene(embree.device);
+  rtcSetSceneFlags(embree.scene, RTC_SCENE_FLAG_ROBUST);  // box tests rounded outward
+  RTCGeometry geometry = rtcNewGeometry(embree.device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geometry, unsigned(targets.size()));
   rtcSetGeometryUserData(geometry, this);
   rtcSetGeometryBoundsFunction(geometry, bounds, this);
   rtcSetGeometryIntersectFunction(geometry, intersect);
   rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene, geometry);
+  rtcAttachGeometry(embree.scene, geometry);
   rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene);
-  if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
+  rtcCommitScene(embree.scene);
+  if (rtcGetDeviceError(embree.device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
 }
 
-/// Embree's box of a polygon: its box widened by the slack, rounded outward to float.
 void SurfaceRays::Scene::bounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = *static_cast<const Scene*>(args->geometryUserPtr);
   const Target& target = s.targets[args->primID];
@@ -151,9 +177,6 @@ void SurfaceRays::Scene::bounds(const RTCBoundsFunctionArguments* args) {
   b.upper_x = floatAbove(hi.x), b.upper_y = floatAbove(hi.y), b.upper_z = floatAbove(hi.z);
 }
 
-/// Meets the polygon whose box Embree's ray entered with the double ray; a better hit moves
-/// Embree's far end to it, rounded up, so that boxes beyond it are skipped but not those as
-/// near (a tie may still win by its index).
 void SurfaceRays::Scene::intersect(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto& context = *static_cast<Context*>(args->context);
@@ -161,17 +184,16 @@ void SurfaceRays::Scene::intersect(const RTCIntersectFunctionNArguments* args) {
   double t = 0;
   if (!context.scene->meets(i, context.ray, context.best, t)) return;
   context.best = context.scene->hit(i, context.ray, t);
+  // Embree skips the boxes beyond the hit from now on; rounded up, it keeps those as near, where
+  // a tie may still win.
   RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0) = floatAbove(t - context.start);
 }
 
-/// The distances along the ray at which it enters the scene's box (0 at the earliest) and
-/// leaves it: in after out when it misses. An axis the ray does not move along is tested apart,
-/// where 0 · ∞ would give NaN.
 std::pair<double, double> SurfaceRays::Scene::crossing(const Ray& ray) const {
   double in = 0, out = HUGE_VAL;
   for (int axis = 0; axis < 3; ++axis) {
     const double o = ray.origin[axis], d = ray.dir[axis];
-    if (d == 0) {
+    if (d == 0) {  // tested apart, where 0 · ∞ would give NaN
       if (o < lo[axis] || o > hi[axis]) return {HUGE_VAL, 0};
       continue;
     }
@@ -181,27 +203,19 @@ std::pair<double, double> SurfaceRays::Scene::crossing(const Ray& ray) const {
   return {in, out};
 }
 
-/// Embree's ray starts where the double ray enters the scene's box, so that its round-off (a
-/// share of its origin's coordinates) stays within the slack however far off the origin is.
 std::optional<RayHit> SurfaceRays::Scene::firstHit(const Ray& ray) const {
   const auto [in, out] = crossing(ray);
   if (targets.empty() || !(in <= out)) return std::nullopt;
   Context context;
   rtcInitIntersectContext(&context);
   context.scene = this, context.ray = ray, context.start = in;
-  const glm::dvec3 origin = ray.origin + in * ray.dir;
-  RTCRayHit rayHit{};
-  rayHit.ray.org_x = float(origin.x), rayHit.ray.org_y = float(origin.y), rayHit.ray.org_z = float(origin.z);
-  rayHit.ray.dir_x = float(ray.dir.x), rayHit.ray.dir_y = float(ray.dir.y), rayHit.ray.dir_z = float(ray.dir.z);
-  rayHit.ray.tnear = std::max(0.0f, floatBelow(ray.after - in));
-  rayHit.ray.tfar = HUGE_VALF;
-  rayHit.ray.mask = ~0u;
-  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &context, &rayHit);
+  // Embree's ray starts where the double ray enters the box round the targets, so that its
+  // origin's round-off stays within the slack however far off the origin is.
+  RTCRayHit floatHit = floatRay(ray.origin + in * ray.dir, ray.dir, ray.after - in);
+  rtcIntersect1(embree.scene, &context, &floatHit);
   return context.best;
 }
 
-/// Whether the ray meets polygon i beyond `after` and before `best`; then t is where.
 bool SurfaceRays::Scene::meets(int i, const Ray& ray, const std::optional<RayHit>& best, double& t) const {
   const Target& target = targets[size_t(i)];
   const double across = glm::dot(target.frame.normal, ray.dir);
@@ -215,7 +229,6 @@ bool SurfaceRays::Scene::meets(int i, const Ray& ray, const std::optional<RayHit
   return true;
 }
 
-/// The hit on polygon i at t: its front when the ray comes against its normal.
 RayHit SurfaceRays::Scene::hit(int i, const Ray& ray, double t) const {
   const Target& target = targets[size_t(i)];
   return {t, i, target.twoSided || glm::dot(target.frame.normal, ray.dir) < 0};
