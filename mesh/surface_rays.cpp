@@ -1,15 +1,20 @@
-// Polygons ▸ rays: a hierarchy of boxes split at the median along their widest axis; a ray
-// visits the boxes it crosses nearer than its best hit, and meets a polygon where it crosses
-// its plane inside its rings (even-odd).
+// Polygons ▸ rays: Embree, in single precision, finds the polygons whose boxes a ray crosses,
+// each box widened so that the float ray enters every box its double ray enters; each polygon
+// is then met or missed in double precision, where the ray crosses its plane inside its rings
+// (even-odd). The hit is the one a test of every polygon would find.
 #include "mesh/surface_rays.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <stdexcept>
+#include <utility>
 
+#include <embree3/rtcore.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
+
+#include "mesh/scene/geometry.h"
 
 namespace rad {
 namespace {
@@ -17,8 +22,12 @@ namespace {
 /// A polygon's box is widened by this times its size plus its distance from the origin, so that
 /// round-off in a hit point (a flat box for a polygon along an axis) does not lose the hit.
 constexpr double kBoxSlack = 1e-9;
-/// Polygons per leaf of the hierarchy.
-constexpr int kLeafPolygons = 4;
+/// Embree's boxes reach beyond the polygons' by this times the scene's reach (its largest
+/// coordinate plus its diagonal). A float ray strays from its double ray by about 2⁻²⁴ ≈ 6e-8
+/// of that (its origin's round-off, and its direction's times a distance across the scene), so
+/// it enters every box the double ray enters, with room to spare; Embree's robust traversal
+/// rounds its own box tests outward.
+constexpr double kFloatSlack = 1e-6;
 
 /// Even-odd over the outer ring and the holes: whether p, on the frame's plane, is inside.
 bool insidePolygon(const PlaneFrame& frame, const Polygon& polygon, const glm::dvec3& p) {
@@ -27,102 +36,212 @@ bool insidePolygon(const PlaneFrame& frame, const Polygon& polygon, const glm::d
   return inside;
 }
 
-/// The distance along the ray (origin o, direction d, its inverse `inverse`) at which it enters
-/// the box [lo, hi], or infinity when it misses it. An axis the ray does not move along is
-/// tested apart, where 0 · ∞ would give NaN.
-double entry(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& o, const glm::dvec3& d,
-             const glm::dvec3& inverse) {
-  double in = 0, out = HUGE_VAL;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (d[axis] == 0) {
-      if (o[axis] < lo[axis] || o[axis] > hi[axis]) return HUGE_VAL;
-      continue;
-    }
-    const double a = (lo[axis] - o[axis]) * inverse[axis], b = (hi[axis] - o[axis]) * inverse[axis];
-    in = std::max(in, std::min(a, b)), out = std::min(out, std::max(a, b));
-  }
-  return in <= out ? in : HUGE_VAL;
+/// The float nearest x from below, and from above.
+float floatBelow(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
 }
+float floatAbove(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, HUGE_VALF) : f;
+}
+
+/// Whether meeting polygon i at t comes before `best`: nearer, or as near and given first, so
+/// that the hit does not hang on the order Embree visits the boxes in.
+bool before(double t, int i, const std::optional<RayHit>& best) {
+  if (!best) return t < HUGE_VAL;
+  return t < best->t || (t == best->t && i < best->polygon);
+}
+
+/// Embree's copy of a ray from `origin` along `dir`, from `after` along it (0 at the earliest).
+RTCRayHit floatRay(const glm::dvec3& origin, const glm::dvec3& dir, double after) {
+  RTCRayHit r{};
+  r.ray.org_x = float(origin.x), r.ray.org_y = float(origin.y), r.ray.org_z = float(origin.z);
+  r.ray.dir_x = float(dir.x), r.ray.dir_y = float(dir.y), r.ray.dir_z = float(dir.z);
+  r.ray.tnear = std::max(0.0f, floatBelow(after));
+  r.ray.tfar = HUGE_VALF;
+  r.ray.mask = ~0u;
+  r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return r;
+}
+
+/// An Embree device and scene, released with it (also when building the scene throws).
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  EmbreeScene() = default;
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+  ~EmbreeScene() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
 
 }  // namespace
 
-SurfaceRays::SurfaceRays(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided)
-    : polygons_(polygons) {
-  for (size_t i = 0; i < polygons.size(); ++i) {
-    Target target{planeFrame(polygons[i].outer), glm::dvec3(HUGE_VAL), glm::dvec3(-HUGE_VAL), twoSided[i]};
-    for (const glm::dvec3& p : polygons[i].outer) target.lo = glm::min(target.lo, p), target.hi = glm::max(target.hi, p);
-    const double size = glm::length(target.hi - target.lo);
-    const double reach = size + glm::length(glm::max(glm::abs(target.lo), glm::abs(target.hi)));
-    target.lo -= glm::dvec3(kBoxSlack * reach), target.hi += glm::dvec3(kBoxSlack * reach);
-    if (glm::length(newellNormal(polygons[i].outer)) <= kMinRelativeArea * size * size)
-      target.frame.normal = glm::dvec3(0.0);  // never met
-    targets_.push_back(target);
-  }
-  order_.resize(targets_.size());
-  std::iota(order_.begin(), order_.end(), 0);
-  if (!targets_.empty()) addNode(0, int(targets_.size()));
+struct SurfaceRays::Scene {
+  /// A polygon as the rays test it.
+  struct Target {
+    PlaneFrame frame;   ///< a zero normal for a zero-area polygon
+    glm::dvec3 lo, hi;  ///< the polygon's box, widened by round-off
+    bool twoSided = false;
+  };
+  /// A ray as the search carries it.
+  struct Ray {
+    glm::dvec3 origin, dir;
+    bool throughBacks = false;
+    double after = 0;
+  };
+  /// What Embree hands the intersect callback with each ray: the double ray and the best hit so
+  /// far, so that rays from several threads share nothing but the scene.
+  struct Context : RTCIntersectContext {
+    const Scene* scene = nullptr;
+    Ray ray;
+    double start = 0;  ///< where along `ray` Embree's float ray starts
+    std::optional<RayHit> best;
+  };
+
+  /// The targets, the box round them and the slack, then Embree's scene.
+  Scene(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided);
+
+  /// A polygon's plane and box.
+  static Target target(const Polygon& polygon, bool twoSided);
+  /// One user primitive per polygon: Embree asks for its box and leaves meeting it to
+  /// `intersect`.
+  void build();
+  /// Embree's box of a polygon: its box widened by the slack, rounded outward to float.
+  static void bounds(const RTCBoundsFunctionArguments* args);
+  /// Meets the polygon whose box Embree's ray entered, with the double ray of the context.
+  static void intersect(const RTCIntersectFunctionNArguments* args);
+  /// The distances along the ray at which it enters the box round the targets (0 at the
+  /// earliest) and leaves it: in after out when it misses.
+  std::pair<double, double> crossing(const Ray& ray) const;
+  std::optional<RayHit> firstHit(const Ray& ray) const;
+  /// Whether the ray meets polygon i beyond `after` and before `best`; then t is where.
+  bool meets(int i, const Ray& ray, const std::optional<RayHit>& best, double& t) const;
+  /// The hit on polygon i at t: its front when the ray comes against its normal.
+  RayHit hit(int i, const Ray& ray, double t) const;
+
+  const std::vector<Polygon>& polygons;
+  std::vector<Target> targets;
+  glm::dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};  ///< round every target, widened by `slack`
+  double slack = 0;                        ///< how far Embree's boxes reach beyond the targets'
+  EmbreeScene embree;
+};
+
+SurfaceRays::Scene::Scene(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided)
+    : polygons(polygons) {
+  for (size_t i = 0; i < polygons.size(); ++i) targets.push_back(target(polygons[i], twoSided[i]));
+  for (const Target& t : targets) lo = glm::min(lo, t.lo), hi = glm::max(hi, t.hi);
+  const glm::dvec3 far = glm::max(glm::abs(lo), glm::abs(hi));
+  slack = kFloatSlack * (std::max({far.x, far.y, far.z}) + glm::length(hi - lo));
+  lo -= glm::dvec3(slack), hi += glm::dvec3(slack);
+  build();
 }
 
-/// Adds the node over order_[begin, end) and, above kLeafPolygons, its two halves (the median of
-/// the box centres along the node's widest axis). Returns its index.
-int SurfaceRays::addNode(int begin, int end) {
-  Node node{glm::dvec3(HUGE_VAL), glm::dvec3(-HUGE_VAL), begin, end};
-  for (int k = begin; k < end; ++k) {
-    node.lo = glm::min(node.lo, targets_[size_t(order_[size_t(k)])].lo);
-    node.hi = glm::max(node.hi, targets_[size_t(order_[size_t(k)])].hi);
-  }
-  const int index = int(nodes_.size());
-  nodes_.push_back(node);
-  if (end - begin <= kLeafPolygons) return index;
-  const glm::dvec3 size = node.hi - node.lo;
-  const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
-  const auto centre = [&](int i) { return targets_[size_t(i)].lo[axis] + targets_[size_t(i)].hi[axis]; };
-  const int middle = (begin + end) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
-                   [&](int a, int b) { return centre(a) < centre(b); });
-  const int left = addNode(begin, middle), right = addNode(middle, end);
-  nodes_[size_t(index)].children[0] = left, nodes_[size_t(index)].children[1] = right;
-  return index;
+SurfaceRays::Scene::Target SurfaceRays::Scene::target(const Polygon& polygon, bool twoSided) {
+  Target target{planeFrame(polygon.outer), glm::dvec3(HUGE_VAL), glm::dvec3(-HUGE_VAL), twoSided};
+  for (const glm::dvec3& p : polygon.outer) target.lo = glm::min(target.lo, p), target.hi = glm::max(target.hi, p);
+  const double size = glm::length(target.hi - target.lo);
+  const double reach = size + glm::length(glm::max(glm::abs(target.lo), glm::abs(target.hi)));
+  target.lo -= glm::dvec3(kBoxSlack * reach), target.hi += glm::dvec3(kBoxSlack * reach);
+  if (glm::length(newellNormal(polygon.outer)) <= kMinRelativeArea * size * size)
+    target.frame.normal = glm::dvec3(0.0);  // never met
+  return target;
 }
 
-/// Whether the ray meets polygon i nearer than t (updated when it does).
-bool SurfaceRays::meets(int i, const Ray& ray, double& t) const {
-  const Target& target = targets_[size_t(i)];
+void SurfaceRays::Scene::build() {
+  embree.device = rtcNewDevice(nullptr);
+  embree.scene = rtcNewScene(embree.device);
+  rtcSetSceneFlags(embree.scene, RTC_SCENE_FLAG_ROBUST);  // box tests rounded outward
+  RTCGeometry geometry = rtcNewGeometry(embree.device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, unsigned(targets.size()));
+  rtcSetGeometryUserData(geometry, this);
+  rtcSetGeometryBoundsFunction(geometry, bounds, this);
+  rtcSetGeometryIntersectFunction(geometry, intersect);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(embree.scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(embree.scene);
+  if (rtcGetDeviceError(embree.device) != RTC_ERROR_NONE) throw std::runtime_error("embree: scene build failed");
+}
+
+void SurfaceRays::Scene::bounds(const RTCBoundsFunctionArguments* args) {
+  const auto& s = *static_cast<const Scene*>(args->geometryUserPtr);
+  const Target& target = s.targets[args->primID];
+  const glm::dvec3 lo = target.lo - s.slack, hi = target.hi + s.slack;
+  RTCBounds& b = *args->bounds_o;
+  b.lower_x = floatBelow(lo.x), b.lower_y = floatBelow(lo.y), b.lower_z = floatBelow(lo.z);
+  b.upper_x = floatAbove(hi.x), b.upper_y = floatAbove(hi.y), b.upper_z = floatAbove(hi.z);
+}
+
+void SurfaceRays::Scene::intersect(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto& context = *static_cast<Context*>(args->context);
+  const int i = int(args->primID);
+  double t = 0;
+  if (!context.scene->meets(i, context.ray, context.best, t)) return;
+  context.best = context.scene->hit(i, context.ray, t);
+  // Embree skips the boxes beyond the hit from now on; rounded up, it keeps those as near, where
+  // a tie may still win.
+  RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0) = floatAbove(t - context.start);
+}
+
+std::pair<double, double> SurfaceRays::Scene::crossing(const Ray& ray) const {
+  double in = 0, out = HUGE_VAL;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double o = ray.origin[axis], d = ray.dir[axis];
+    if (d == 0) {  // tested apart, where 0 · ∞ would give NaN
+      if (o < lo[axis] || o > hi[axis]) return {HUGE_VAL, 0};
+      continue;
+    }
+    const double a = (lo[axis] - o) / d, b = (hi[axis] - o) / d;
+    in = std::max(in, std::min(a, b)), out = std::min(out, std::max(a, b));
+  }
+  return {in, out};
+}
+
+std::optional<RayHit> SurfaceRays::Scene::firstHit(const Ray& ray) const {
+  const auto [in, out] = crossing(ray);
+  if (targets.empty() || !(in <= out)) return std::nullopt;
+  Context context;
+  rtcInitIntersectContext(&context);
+  context.scene = this, context.ray = ray, context.start = in;
+  // Embree's ray starts where the double ray enters the box round the targets, so that its
+  // origin's round-off stays within the slack however far off the origin is.
+  RTCRayHit floatHit = floatRay(ray.origin + in * ray.dir, ray.dir, ray.after - in);
+  rtcIntersect1(embree.scene, &context, &floatHit);
+  return context.best;
+}
+
+bool SurfaceRays::Scene::meets(int i, const Ray& ray, const std::optional<RayHit>& best, double& t) const {
+  const Target& target = targets[size_t(i)];
   const double across = glm::dot(target.frame.normal, ray.dir);
   if (across == 0 || (ray.throughBacks && !target.twoSided && across > 0)) return false;
   const double s = glm::dot(target.frame.normal, target.frame.origin - ray.origin) / across;
-  if (!(s > ray.after && s < t)) return false;
+  if (!(s > ray.after && before(s, i, best))) return false;
   const glm::dvec3 p = ray.origin + s * ray.dir;
   if (glm::any(glm::lessThan(p, target.lo)) || glm::any(glm::greaterThan(p, target.hi))) return false;
-  if (!insidePolygon(target.frame, polygons_[size_t(i)], p)) return false;
+  if (!insidePolygon(target.frame, polygons[size_t(i)], p)) return false;
   t = s;
   return true;
 }
 
-/// The hit on polygon i at t: its front when the ray comes against its normal.
-RayHit SurfaceRays::hit(int i, const Ray& ray, double t) const {
-  const Target& target = targets_[size_t(i)];
+RayHit SurfaceRays::Scene::hit(int i, const Ray& ray, double t) const {
+  const Target& target = targets[size_t(i)];
   return {t, i, target.twoSided || glm::dot(target.frame.normal, ray.dir) < 0};
 }
 
-/// Updates `best` with the polygons of the node's subtree the ray meets nearer.
-void SurfaceRays::search(int index, const Ray& ray, std::optional<RayHit>& best) const {
-  const Node& node = nodes_[size_t(index)];
-  double t = best ? best->t : HUGE_VAL;
-  if (!(entry(node.lo, node.hi, ray.origin, ray.dir, ray.inverse) < t)) return;
-  if (node.children[0] < 0) {
-    for (int k = node.begin; k < node.end; ++k)
-      if (meets(order_[size_t(k)], ray, t)) best = hit(order_[size_t(k)], ray, t);
-    return;
-  }
-  for (int child : node.children) search(child, ray, best);
-}
+SurfaceRays::SurfaceRays(const std::vector<Polygon>& polygons, const std::vector<bool>& twoSided)
+    : scene_(std::make_unique<Scene>(polygons, twoSided)) {}
+
+SurfaceRays::~SurfaceRays() = default;
 
 std::optional<RayHit> SurfaceRays::firstHit(const glm::dvec3& origin, const glm::dvec3& dir,
                                             bool throughBacks, double after) const {
-  std::optional<RayHit> best;
-  if (!nodes_.empty()) search(0, Ray{origin, dir, 1.0 / dir, throughBacks, after}, best);
-  return best;
+  return scene_->firstHit({origin, dir, throughBacks, after});
 }
 
 }  // namespace rad

@@ -75,6 +75,43 @@ TEST(SurfaceRaysTest, ATwoSidedPolygonIsMetFromBothSides) {
   EXPECT_TRUE(back->front);
 }
 
+TEST(SurfaceRaysTest, OfPolygonsMetAtOneDistanceTheFirstGivenWins) {
+  Polygon up = squareWithHole()[0], down = up;
+  std::reverse(down.outer.begin(), down.outer.end());
+  const std::vector<Polygon> upFirst{up, down}, downFirst{down, up};
+  const auto a = SurfaceRays(upFirst, {false, false}).firstHit({0.25, 0.25, 3}, {0, 0, -1}, false);
+  const auto b = SurfaceRays(downFirst, {false, false}).firstHit({0.25, 0.25, 3}, {0, 0, -1}, false);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->polygon, 0);
+  EXPECT_TRUE(a->front);
+  EXPECT_EQ(b->polygon, 0);
+  EXPECT_FALSE(b->front);
+}
+
+/// An 8 × 8 grid of 0.5 × 0.5 squares at z = 0 facing +z, one per unit square, square i·8 + j
+/// at (i, j): enough for Embree to cull boxes.
+std::vector<Polygon> gridOfSquares() {
+  std::vector<Polygon> squares;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      squares.push_back({{{i, j, 0}, {i + 0.5, j, 0}, {i + 0.5, j + 0.5, 0}, {i, j + 0.5, 0}}, {}});
+  return squares;
+}
+
+TEST(SurfaceRaysTest, MeetsFromFarAwayAndNothingInAnEmptyList) {
+  // From 1e9 away a float origin is off by tens of units: the ray must not lose the squares.
+  const std::vector<Polygon> squares = gridOfSquares();
+  const SurfaceRays rays(squares, std::vector<bool>(squares.size(), false));
+  for (int k = 0; k < 64; ++k) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(1 + k % 3, 2 + k % 5, 3)), p(k / 8 + 0.25, k % 8 + 0.25, 0);
+    const auto hit = rays.firstHit(p + 1e9 * n, -n, false);
+    ASSERT_TRUE(hit) << "square " << k;
+    EXPECT_EQ(hit->polygon, k);
+    EXPECT_NEAR(hit->t, 1e9, 1e9 * kPosition);
+  }
+  EXPECT_FALSE(SurfaceRays({}, {}).firstHit({0, 0, 0}, {0, 0, 1}, false));
+}
+
 TEST(DefaultCameraTest, UnitsPerMetre) {
   EXPECT_EQ(unitsPerMetre("mm"), 1000.0);
   EXPECT_EQ(unitsPerMetre("Metres"), 1.0);

@@ -1,8 +1,9 @@
 #pragma once
-// A bounding-volume hierarchy over a hemicube's elements, built once per geometry and shared
-// by every hemicube that draws it: a cube skips whole subtrees below its base plane or hidden
-// behind what it has already drawn, without touching their elements. Each leaf keeps its own
-// copy of its corners and normals, so that a cube reads a leaf from one place.
+// A bounding-volume hierarchy over a hemicube's elements (mesh/base/box_tree.h), built once
+// per geometry and shared by every hemicube that draws it: a cube skips whole subtrees below
+// its base plane or hidden behind what it has already drawn, without touching their elements.
+// Each leaf keeps its own copy of its corners and normals, so that a cube reads a leaf from
+// one place.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -10,20 +11,19 @@
 
 #include <glm/vec3.hpp>
 
+#include "mesh/base/box_tree.h"
+
 namespace rad {
 
 class ElementHierarchy {
  public:
-  /// A subtree: the box [lo, hi] around its elements' corners and its elements, which are
-  /// order()[first, first + count). A leaf has second == 0 and its corners' distinct vertices
-  /// at leafPositions()[vertexFirst, vertexFirst + vertexCount); an inner node's first child
-  /// is the node after it and its second child is nodes()[second].
-  struct Node {
-    glm::dvec3 lo, hi;
-    uint32_t first = 0, count = 0, second = 0;
+  /// A subtree (BoxTree::Node: the box [lo, hi] around its elements' corners and its
+  /// elements, which are order()[first, first + count); a leaf has second == 0, an inner
+  /// node's first child is the node after it and its second child is nodes()[second]). A
+  /// leaf's corners' distinct vertices are leafPositions()[vertexFirst, vertexFirst +
+  /// vertexCount).
+  struct Node : BoxTree::Node {
     uint32_t vertexFirst = 0, vertexCount = 0;
-
-    bool leaf() const { return second == 0; }
   };
 
   /// At most this many elements in a leaf, so at most 3 × kLeafSize vertices.
@@ -31,7 +31,7 @@ class ElementHierarchy {
 
   /// The hierarchy of the triangles with corners positions[indices[3e..3e+2]] and unit
   /// normal normals[e] (element e), split by the surface area heuristic over binned
-  /// centroids. At least one element.
+  /// centroids (BoxSplit::surfaceArea). At least one element.
   ElementHierarchy(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& indices,
                    const std::vector<glm::dvec3>& normals);
 

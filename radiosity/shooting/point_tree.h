@@ -1,8 +1,8 @@
 #pragma once
-// A bounding-volume hierarchy over points, for "the nearest point that passes a test, within a
-// reach of a box": its cost follows the points near the box, not the box's volume, whatever
-// the spread of sizes in the scene (a grid's cells would be too coarse for small things or too
-// many for large ones).
+// A bounding-volume hierarchy over points (mesh/base/box_tree.h), for "the nearest point that
+// passes a test, within a reach of a box": its cost follows the points near the box, not the
+// box's volume, whatever the spread of sizes in the scene (a grid's cells would be too coarse
+// for small things or too many for large ones).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,6 +12,8 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
+#include "mesh/base/box_tree.h"
+
 namespace rad {
 
 class PointTree {
@@ -19,35 +21,40 @@ class PointTree {
   /// At most this many points in a leaf.
   static constexpr uint32_t kLeafSize = 8;
 
+  /// The tree over `points` (each its own box and centre).
   explicit PointTree(std::vector<glm::dvec3> points) : points_(std::move(points)) {
-    order_.resize(points_.size());
-    for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
-    if (!points_.empty()) build(0, uint32_t(points_.size()));
+    std::vector<AlignedBox> boxes;
+    boxes.reserve(points_.size());
+    for (const glm::dvec3& p : points_) boxes.push_back({p, p});
+    tree_ = buildBoxTree(boxes, points_, kLeafSize, BoxSplit::median);
   }
+
+  /// The points, by index.
+  const std::vector<glm::dvec3>& points() const { return points_; }
 
   /// The smallest distance(i) over the points, if under `reach` (HUGE_VAL otherwise).
   /// `distance` returns HUGE_VAL for a point that does not count; it must never be less than
   /// the point's distance to the box [lo, hi], so that subtrees farther from the box than the
   /// best found so far are skipped.
-  const std::vector<glm::dvec3>& points() const { return points_; }
-
   template <class Distance>
   double nearest(const glm::dvec3& lo, const glm::dvec3& hi, double reach, Distance&& distance) const {
-    if (nodes_.empty()) return HUGE_VAL;
+    if (tree_.nodes.empty()) return HUGE_VAL;
     double best = reach;
     uint32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-      const Node& node = nodes_[stack[--top]];
+      const Node& node = tree_.nodes[stack[--top]];
       if (boxDistance(node, lo, hi) >= best) continue;
-      if (node.second == 0) {
-        for (uint32_t k = node.first; k < node.first + node.count; ++k) best = std::min(best, distance(int(order_[k])));
+      if (node.leaf()) {
+        for (uint32_t k = node.first; k < node.first + node.count; ++k)
+          best = std::min(best, distance(int(tree_.order[k])));
         continue;
       }
-      const uint32_t first = uint32_t(&node - nodes_.data()) + 1, second = node.second;
+      const uint32_t first = uint32_t(&node - tree_.nodes.data()) + 1, second = node.second;
       // The nearer child last, so it is visited first.
-      const bool firstNearer = boxDistance(nodes_[first], lo, hi) <= boxDistance(nodes_[second], lo, hi);
+      const bool firstNearer =
+          boxDistance(tree_.nodes[first], lo, hi) <= boxDistance(tree_.nodes[second], lo, hi);
       stack[top++] = firstNearer ? second : first;
       stack[top++] = firstNearer ? first : second;
     }
@@ -55,45 +62,17 @@ class PointTree {
   }
 
  private:
-  /// A subtree: the box around its points, order_[first, first + count); a leaf has
-  /// second == 0, an inner node's first child follows it and its second is nodes_[second].
-  struct Node {
-    glm::dvec3 lo, hi;
-    uint32_t first = 0, count = 0, second = 0;
-  };
+  using Node = BoxTree::Node;
 
   static double boxDistance(const Node& n, const glm::dvec3& lo, const glm::dvec3& hi) {
     const glm::dvec3 gap = glm::max(glm::max(n.lo - hi, lo - n.hi), glm::dvec3(0.0));
     return std::sqrt(gap.x * gap.x + gap.y * gap.y + gap.z * gap.z);
   }
 
+  std::vector<glm::dvec3> points_;
   /// Median splits along the longest side: depth about log2(n / kLeafSize), far within the
   /// traversal's stack.
-  uint32_t build(uint32_t first, uint32_t count) {
-    const uint32_t index = uint32_t(nodes_.size());
-    nodes_.push_back({glm::dvec3(HUGE_VAL), glm::dvec3(-HUGE_VAL), first, count, 0});
-    glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
-    for (uint32_t k = first; k < first + count; ++k) {
-      lo = glm::min(lo, points_[order_[k]]);
-      hi = glm::max(hi, points_[order_[k]]);
-    }
-    nodes_[index].lo = lo;
-    nodes_[index].hi = hi;
-    if (count <= kLeafSize) return index;
-    const glm::dvec3 side = hi - lo;
-    const int axis = side.x >= side.y && side.x >= side.z ? 0 : side.y >= side.z ? 1 : 2;
-    const uint32_t half = count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
-                     [&](uint32_t a, uint32_t b) { return points_[a][axis] < points_[b][axis]; });
-    build(first, half);
-    const uint32_t second = build(first + half, count - half);
-    nodes_[index].second = second;
-    return index;
-  }
-
-  std::vector<glm::dvec3> points_;
-  std::vector<uint32_t> order_;
-  std::vector<Node> nodes_;
+  BoxTree tree_;
 };
 
 }  // namespace rad
