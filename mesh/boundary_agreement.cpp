@@ -16,9 +16,9 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/base/error.h"
-#include "mesh/scene/geometry.h"
 #include "mesh/base/progress.h"
 #include "mesh/base/spatial_hash.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad::meshing {
 namespace {

@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/base/stage_times.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/planar_pieces.h"
-#include "mesh/base/stage_times.h"
 
 namespace rad::meshing {
 

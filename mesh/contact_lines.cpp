@@ -7,13 +7,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/base/progress.h"
+#include "mesh/base/spatial_hash.h"
 #include "mesh/contact_cutter.h"
 #include "mesh/coplanar_pieces.h"
 #include "mesh/piece_boxes.h"
 #include "mesh/scene/geometry.h"
-#include "mesh/base/progress.h"
 #include "mesh/solid_probe.h"
-#include "mesh/base/spatial_hash.h"
 
 namespace rad::meshing {
 namespace {

@@ -11,11 +11,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/base/number_text.h"
 #include "mesh/base/parallel.h"
-#include "mesh/surface_rays.h"
 #include "mesh/base/union_find.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/surface_rays.h"
 
 namespace rad {
 namespace {

@@ -10,11 +10,11 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <glm/geometric.hpp>
 
-#include "mesh/scene/geometry.h"
-#include "mesh/patch_growth.h"
 #include "mesh/base/progress.h"
-#include "mesh/seams.h"
 #include "mesh/base/union_find.h"
+#include "mesh/patch_growth.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/seams.h"
 
 namespace rad::meshing {
 namespace {

@@ -3,8 +3,8 @@
 #include <array>
 #include <vector>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/planar_pieces.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/seams.h"
 
 namespace rad::meshing {

@@ -7,9 +7,9 @@
 
 #include <algorithm>
 
+#include "mesh/base/error.h"
 #include "mesh/boundary_agreement.h"
 #include "mesh/contact_lines.h"
-#include "mesh/base/error.h"
 #include "mesh/patch_assembly.h"
 #include "mesh/planar_pieces.h"
 

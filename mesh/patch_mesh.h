@@ -7,8 +7,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <glm/vec3.hpp>
 
-#include "mesh/scene/scene.h"
 #include "mesh/base/stage_times.h"
+#include "mesh/scene/scene.h"
 
 namespace rad {
 

@@ -9,8 +9,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/polygon_mesher.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/scene/scene.h"
 
 namespace rad::meshing {

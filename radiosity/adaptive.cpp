@@ -9,11 +9,11 @@
 
 #include "mesh/base/color.h"
 #include "mesh/base/error.h"
-#include "mesh/scene/geometry.h"
 #include "mesh/base/progress.h"
 #include "mesh/refine.h"
-#include "radiosity/settings.h"
+#include "mesh/scene/geometry.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
 
 namespace rad {
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "mesh/patch_mesh.h"
-#include "radiosity/settings.h"
 #include "radiosity/light/direct_light.h"
+#include "radiosity/settings.h"
 
 namespace rad {
 

@@ -7,8 +7,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "mesh/scene/camera.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/scene/camera.h"
 #include "mesh/scene/scene.h"
 #include "radiosity/vertex_radiosity.h"
 

@@ -7,11 +7,11 @@
 #include <glm/common.hpp>
 
 #include "mesh/base/color.h"
-#include "mesh/results/default_camera.h"
 #include "mesh/base/error.h"
 #include "mesh/base/parallel.h"
-#include "radiosity/result.h"
+#include "mesh/results/default_camera.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/result.h"
 
 namespace rad {
 

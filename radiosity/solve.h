@@ -22,11 +22,11 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/scene/scene.h"
 #include "radiosity/adaptive.h"
-#include "radiosity/light/direct_light.h"
 #include "radiosity/gather/final_gather.h"
 #include "radiosity/gather_plan.h"
-#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/light/direct_light.h"
 #include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/vertex_radiosity.h"
 
 namespace rad {

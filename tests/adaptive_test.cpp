@@ -15,12 +15,12 @@
 #include "mesh/base/error.h"
 #include "mesh/refine.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
-#include "tests/solve_support.h"
 #include "radiosity/formfactors/point_polygon.h"
-#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
+#include "tests/solve_support.h"
 
 namespace rad {
 namespace {

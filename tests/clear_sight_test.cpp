@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "radiosity/light/clear_sight.h"
 #include "radiosity/formfactors/element_hierarchy.h"
+#include "radiosity/light/clear_sight.h"
 
 namespace rad {
 namespace {

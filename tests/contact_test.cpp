@@ -9,11 +9,11 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
-#include "radiosity/solve.h"
-#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/solve.h"
 
 namespace rad {
 namespace {

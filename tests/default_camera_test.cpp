@@ -8,9 +8,9 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/scene/camera.h"
 #include "mesh/results/default_camera.h"
 #include "mesh/results/result_file.h"
+#include "mesh/scene/camera.h"
 #include "mesh/scene/readers/scene_loader.h"
 #include "mesh/surface_rays.h"
 #include "tests/support.h"

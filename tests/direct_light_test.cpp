@@ -13,11 +13,11 @@
 
 #include "mesh/base/color.h"
 #include "mesh/refine.h"
-#include "radiosity/light/direct_light.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/formfactors/point_polygon.h"
+#include "radiosity/light/direct_light.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"
-#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "mesh/facing.h"
 #include "mesh/scene/geometry.h"
-#include "tests/solve_support.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "tests/solve_support.h"
 
 namespace rad {
 namespace {

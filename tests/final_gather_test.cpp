@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "mesh/results/reference_points.h"
-#include "radiosity/gather/final_gather.h"
 #include "radiosity/formfactors/flat_regions.h"
+#include "radiosity/gather/final_gather.h"
 #include "radiosity/gather/gather_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"

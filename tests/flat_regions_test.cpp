@@ -10,9 +10,9 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/gather/final_gather.h"
 #include "radiosity/formfactors/flat_regions.h"
 #include "radiosity/formfactors/hemicube.h"
+#include "radiosity/gather/final_gather.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 #include "tests/support.h"

@@ -10,13 +10,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/scene/readers/coplanar_faces.h"
-#include "mesh/scene/geometry.h"
-#include "mesh/scene/readers/gltf_reader.h"
 #include "mesh/results/reference_points.h"
+#include "mesh/scene/geometry.h"
+#include "mesh/scene/readers/coplanar_faces.h"
+#include "mesh/scene/readers/gltf_reader.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
-#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

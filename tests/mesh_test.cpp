@@ -7,11 +7,11 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/polygon_mesher.h"
-#include "tests/support.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "tests/support.h"
 
 namespace rad {
 namespace {

@@ -9,15 +9,15 @@
 #include <gtest/gtest.h>
 
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
-#include "radiosity/solve.h"
-#include "tests/support.h"
-#include "radiosity/pathtrace/path_tracer.h"
 #include "radiosity/formfactors/point_polygon.h"
-#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/pathtrace/path_tracer.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/solve.h"
 #include "radiosity/true_error.h"
+#include "tests/support.h"
 
 namespace rad::pathtrace {
 namespace {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "mesh/base/error.h"
-#include "mesh/scene/readers/mesh_file.h"
 #include "mesh/results/reference_points.h"
+#include "mesh/scene/readers/mesh_file.h"
 #include "tests/support.h"
 
 namespace rad {

@@ -6,9 +6,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
+#include "mesh/scene/geometry.h"
 #include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {

@@ -9,12 +9,12 @@
 
 #include "mesh/base/color.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/shooting/factor_source.h"
 #include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/shooting/shooter_clusters.h"
 #include "radiosity/shooting/shooter_samples.h"
 #include "tests/solve_support.h"
-#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad {
 namespace {

@@ -10,11 +10,11 @@
 
 #include "mesh/base/color.h"
 #include "mesh/results/reference_points.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"
 #include "tests/support.h"
-#include "mesh/scene/readers/scene_loader.h"
 
 namespace rad::test {
 

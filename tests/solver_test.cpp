@@ -8,11 +8,11 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
-#include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "tests/support.h"
 
 namespace rad {

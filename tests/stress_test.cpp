@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/solve_support.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "tests/solve_support.h"
 
 namespace rad {
 namespace {

@@ -22,8 +22,8 @@
 #include "mesh/base/error.h"
 #include "mesh/base/ply_writer.h"
 #include "mesh/results/result_file.h"
-#include "tests/support.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "tests/support.h"
 
 namespace rad::viewer {
 namespace {

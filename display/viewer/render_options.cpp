@@ -10,9 +10,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "display/viewer/viewer_internal.h"
-#include "mesh/scene/camera.h"
-#include "mesh/results/default_camera.h"
 #include "mesh/base/error.h"
+#include "mesh/results/default_camera.h"
+#include "mesh/scene/camera.h"
 
 namespace rad::viewer {
 namespace {

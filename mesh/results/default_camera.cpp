@@ -11,8 +11,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "mesh/scene/camera.h"
 #include "mesh/base/color.h"
+#include "mesh/scene/camera.h"
 #include "mesh/scene/geometry.h"
 #include "mesh/surface_rays.h"
 

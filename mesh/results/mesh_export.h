@@ -1,7 +1,7 @@
 #pragma once
 // The patch mesh as PLY columns: positions, normals, faces and their surface index.
-#include "mesh/patch_mesh.h"
 #include "mesh/base/ply_writer.h"
+#include "mesh/patch_mesh.h"
 
 namespace rad {
 

@@ -7,11 +7,11 @@
 
 #include <glm/common.hpp>
 
-#include "mesh/scene/camera.h"
 #include "mesh/base/error.h"
 #include "mesh/base/number_text.h"
 #include "mesh/base/ply_reader.h"
 #include "mesh/base/ply_writer.h"
+#include "mesh/scene/camera.h"
 
 namespace rad {
 namespace {

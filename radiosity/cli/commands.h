@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "mesh/scene/scene.h"
 #include "mesh/base/stage_times.h"
+#include "mesh/scene/scene.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 #include "radiosity/true_error.h"

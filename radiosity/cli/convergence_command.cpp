@@ -17,12 +17,12 @@
 #include "mesh/base/output_file.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/results/reference_points.h"
-#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/cli/svg_plot.h"
-#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/reference_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/true_error.h"
 
 namespace rad::cli {

@@ -11,11 +11,11 @@
 
 #include "mesh/base/error.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/settings.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/formfactors/hemicube.h"
 #include "radiosity/formfactors/point_polygon.h"
-#include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/settings.h"
 
 namespace rad::cli {
 namespace {

@@ -9,8 +9,8 @@
 #include "mesh/base/parallel.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/settings.h"
 #include "radiosity/cli/commands.h"
+#include "radiosity/settings.h"
 
 namespace rad::cli {
 namespace {

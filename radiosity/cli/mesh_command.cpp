@@ -2,12 +2,12 @@
 #include <iostream>
 #include <memory>
 
-#include "mesh/results/mesh_export.h"
 #include "mesh/base/output_file.h"
 #include "mesh/patch_mesh.h"
-#include "radiosity/settings.h"
-#include "radiosity/cli/commands.h"
+#include "mesh/results/mesh_export.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/cli/commands.h"
+#include "radiosity/settings.h"
 
 namespace rad::cli {
 namespace {

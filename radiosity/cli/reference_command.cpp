@@ -11,10 +11,10 @@
 #include <unistd.h>
 
 #include "mesh/base/error.h"
-#include "mesh/facing.h"
 #include "mesh/base/input_file.h"
 #include "mesh/base/number_text.h"
 #include "mesh/base/output_file.h"
+#include "mesh/facing.h"
 #include "mesh/results/reference_points.h"
 #include "radiosity/cli/commands.h"
 #include "radiosity/pathtrace/path_tracer.h"

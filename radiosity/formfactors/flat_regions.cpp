@@ -9,9 +9,9 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/patch_mesh.h"
 #include "mesh/polygon_mesher.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad {
 namespace {

@@ -9,10 +9,10 @@
 #include <glm/common.hpp>
 
 #include "mesh/base/parallel.h"
-#include "radiosity/light/direct_light.h"
 #include "radiosity/formfactors/flat_regions.h"
-#include "radiosity/gather/gather_points.h"
 #include "radiosity/formfactors/hemicube.h"
+#include "radiosity/gather/gather_points.h"
+#include "radiosity/light/direct_light.h"
 
 namespace rad {
 

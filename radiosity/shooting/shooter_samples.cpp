@@ -6,8 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/scene/geometry.h"
 #include "mesh/patch_mesh.h"
+#include "mesh/scene/geometry.h"
 
 namespace rad {
 namespace {

@@ -22,12 +22,12 @@
 
 #include "mesh/base/color.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/settings.h"
 #include "radiosity/adaptive.h"
-#include "radiosity/solve.h"
 #include "radiosity/formfactors/point_polygon.h"
-#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/settings.h"
+#include "radiosity/shooting/progressive_solver.h"
+#include "radiosity/solve.h"
 
 namespace {
 

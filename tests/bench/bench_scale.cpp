@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "mesh/base/error.h"
-#include "mesh/scene/readers/scene_loader.h"
 #include "mesh/base/stage_times.h"
+#include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/settings.h"
 #include "radiosity/solve.h"
 

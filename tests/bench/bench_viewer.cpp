@@ -10,8 +10,8 @@
 #include "mesh/patch_mesh.h"
 #include "mesh/results/result_file.h"
 #include "mesh/scene/readers/scene_loader.h"
-#include "radiosity/shooting/progressive_solver.h"
 #include "radiosity/result.h"
+#include "radiosity/shooting/progressive_solver.h"
 
 namespace {
 

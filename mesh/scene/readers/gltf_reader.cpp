@@ -15,9 +15,9 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "mesh/scene/readers/coplanar_faces.h"
 #include "mesh/base/error.h"
 #include "mesh/base/input_file.h"
+#include "mesh/scene/readers/coplanar_faces.h"
 #include "mesh/scene/readers/gltf_internal.h"
 
 namespace rad::gltf {

@@ -6,11 +6,11 @@
 #include <filesystem>
 
 #include "mesh/base/error.h"
-#include "mesh/scene/readers/gltf_reader.h"
 #include "mesh/base/input_file.h"
+#include "mesh/base/ply_reader.h"
+#include "mesh/scene/readers/gltf_reader.h"
 #include "mesh/scene/readers/obj_reader.h"
 #include "mesh/scene/readers/off_reader.h"
-#include "mesh/base/ply_reader.h"
 
 namespace rad {
 namespace {

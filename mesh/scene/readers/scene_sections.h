@@ -4,8 +4,8 @@
 #include <string>
 
 #include "mesh/scene/readers/mesh_file.h"
-#include "mesh/scene/scene.h"
 #include "mesh/scene/readers/scene_json.h"
+#include "mesh/scene/scene.h"
 
 namespace rad::scene_file {
 
