@@ -63,15 +63,40 @@ std::array<int, 3> cornerIndices(const PatchMesh& m, OpenMesh::FaceHandle f) {
   return corners;
 }
 
-/// The patch mesh's geometry as the result file holds it: vertex positions and normals, the
-/// elements' corners and their scene surfaces.
-ResultFile resultGeometry(const PatchMesh& m) {
+/// The vertices a face uses, in order: one that no face uses (left by the mesher where a seam
+/// or refinement moved its faces away) has no normal and no light, and is not written.
+std::vector<int> usedVertices(const PatchMesh& m) {
+  std::vector<int> used;
+  for (auto v : m.mesh.vertices())
+    if (!m.mesh.is_isolated(v)) used.push_back(v.idx());
+  return used;
+}
+
+/// The values of the used vertices (usedVertices), of values per vertex of the mesh.
+template <class T>
+std::vector<T> ofUsed(const std::vector<T>& perVertex, const std::vector<int>& used) {
+  std::vector<T> out;
+  out.reserve(used.size());
+  for (int v : used) out.push_back(perVertex[size_t(v)]);
+  return out;
+}
+
+/// The patch mesh's geometry as the result file holds it: the used vertices' positions and
+/// normals, the elements' corners (indices among those) and their scene surfaces.
+ResultFile resultGeometry(const PatchMesh& m, const std::vector<int>& used) {
   ResultFile r;
-  for (auto v : m.mesh.vertices()) {
+  std::vector<int> index(m.mesh.n_vertices(), -1);
+  for (size_t k = 0; k < used.size(); ++k) {
+    const auto v = m.mesh.vertex_handle(unsigned(used[k]));
+    index[size_t(used[k])] = int(k);
     r.positions.push_back(glm::vec3(PatchMesh::toGlm(m.mesh.point(v))));
     r.vertexNormal.push_back(glm::vec3(PatchMesh::toGlm(m.mesh.normal(v))));
   }
-  for (auto f : m.mesh.faces()) r.faces.push_back(cornerIndices(m, f));
+  for (auto f : m.mesh.faces()) {
+    std::array<int, 3> corners = cornerIndices(m, f);
+    for (int& c : corners) c = index[size_t(c)];
+    r.faces.push_back(corners);
+  }
   for (int e = 0; e < m.elementCount(); ++e) r.faceSurface.push_back(m.surface(e));
   return r;
 }
@@ -90,11 +115,13 @@ std::vector<std::array<uint8_t, 3>> displayColours(const std::vector<glm::dvec3>
 void writeResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& B,
                  const glm::dvec3& ambient, double exposure, const Camera& camera,
                  const VertexDirect* direct) {
-  ResultFile result = resultGeometry(mesh);
-  result.vertexRadiosity = vertexRadiosity(mesh, B, direct);
+  const std::vector<int> used = usedVertices(mesh);
+  ResultFile result = resultGeometry(mesh, used);
+  result.vertexRadiosity = ofUsed(vertexRadiosity(mesh, B, direct), used);
   // The display colour adds ρ·ambient, reconstructed at the vertices like B.
   result.vertexColour = displayColours(
-      ambient != glm::dvec3(0.0) ? shownVertexRadiosity(mesh, B, ambient, direct) : result.vertexRadiosity,
+      ambient != glm::dvec3(0.0) ? ofUsed(shownVertexRadiosity(mesh, B, ambient, direct), used)
+                                 : result.vertexRadiosity,
       exposure);
   result.faceRadiosity = B;
   result.camera = camera;
@@ -104,9 +131,10 @@ void writeResult(const std::string& path, const PatchMesh& mesh, const std::vect
 
 void writeVertexResult(const std::string& path, const PatchMesh& mesh, const std::vector<glm::dvec3>& vertexB,
                        const std::vector<glm::dvec3>& B, double exposure, const Camera& camera) {
-  ResultFile result = resultGeometry(mesh);
-  result.vertexRadiosity = vertexB;
-  result.vertexColour = displayColours(vertexB, exposure);
+  const std::vector<int> used = usedVertices(mesh);
+  ResultFile result = resultGeometry(mesh, used);
+  result.vertexRadiosity = ofUsed(vertexB, used);
+  result.vertexColour = displayColours(result.vertexRadiosity, exposure);
   result.faceRadiosity = B;
   result.camera = camera;
   result.exposure = exposure;

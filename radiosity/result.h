@@ -24,7 +24,8 @@ constexpr double kExposureTarget = 0.8;
 /// 1 when nothing non-emitting is lit.
 double autoExposure(const PatchMesh& mesh, const std::vector<glm::dvec3>& B);
 
-/// Writes the result file (mesh/results/result_file.h): per vertex position, normal, display colour
+/// Writes the result file (mesh/results/result_file.h): per vertex (every vertex a face uses; one
+/// that no face uses has no normal and no light, and is left out) position, normal, display colour
 /// sRGB(clamp(K·(B + ρ·a))) and linear radiosity B; per face the surface index and the element's
 /// own B. `ambient` (a) is added to the display colour only (zero once converged). With `direct`,
 /// vertex radiosities take their direct light from it. Atomic: temporary file, then rename.

@@ -7,6 +7,7 @@
 
 #include "mesh/patch_mesh.h"
 #include "mesh/refine.h"
+#include "mesh/results/result_file.h"
 #include "mesh/scene/readers/scene_loader.h"
 #include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/reference_solver.h"
@@ -569,4 +570,23 @@ TEST(SamplesTest, StratifiedSamplesCoverEachElementOnce) {
 }
 
 }  // namespace
+
+/// A vertex no face uses has no normal and no light: the result file leaves it out, and what it
+/// writes reads back as the same elements (OpenMesh gives such a vertex a NaN normal, which
+/// the project's own reader refused).
+TEST(ResultTest, AVertexNoFaceUsesIsNotWritten) {
+  const Scene scene = loadScene(kScenes + "cube.json");
+  PatchMesh mesh = buildPatchMesh(scene, {0.5, 0.5});
+  const size_t used = mesh.mesh.n_vertices();
+  const auto isolated = mesh.mesh.add_vertex(TriMesh::Point(0.5, 0.5, 0.5));
+  mesh.mesh.set_normal(isolated, TriMesh::Normal(std::nan(""), std::nan(""), std::nan("")));
+  const std::vector<glm::dvec3> B(size_t(mesh.elementCount()), glm::dvec3(0.25));
+  const std::string path = ::testing::TempDir() + "isolated_vertex_result.ply";
+  writeResult(path, mesh, B, glm::dvec3(0.0), 1.0, Camera{});
+  const ResultFile read = readResultFile(path);
+  EXPECT_EQ(read.positions.size(), used);
+  for (const glm::vec3& n : read.vertexNormal) EXPECT_TRUE(std::isfinite(n.x + n.y + n.z));
+  EXPECT_EQ(readResultRadiosity(path, mesh, scene.diagonal()), B);
+}
+
 }  // namespace rad
