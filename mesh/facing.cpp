@@ -104,9 +104,7 @@ std::optional<glm::dvec3> pointOn(const Polygon& polygon, const PlaneFrame& fram
   for (int attempt = 0; attempt < kPointTries; ++attempt) {
     const double a = random.next(), b = random.next();
     const glm::dvec3 p = frame.lift(lo + (hi - lo) * glm::dvec2(a, b));
-    bool inside = insideRing(frame, polygon.outer, p);
-    for (const Ring& hole : polygon.holes) inside = inside != insideRing(frame, hole, p);
-    if (inside) return p;
+    if (insidePolygon(frame, polygon, p)) return p;
   }
   return std::nullopt;
 }

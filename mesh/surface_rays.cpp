@@ -29,13 +29,6 @@ constexpr double kBoxSlack = 1e-9;
 /// rounds its own box tests outward.
 constexpr double kFloatSlack = 1e-6;
 
-/// Even-odd over the outer ring and the holes: whether p, on the frame's plane, is inside.
-bool insidePolygon(const PlaneFrame& frame, const Polygon& polygon, const glm::dvec3& p) {
-  bool inside = insideRing(frame, polygon.outer, p);
-  for (const Ring& hole : polygon.holes) inside = inside != insideRing(frame, hole, p);
-  return inside;
-}
-
 /// The float nearest x from below, and from above.
 float floatBelow(double x) {
   const float f = float(x);

@@ -147,4 +147,10 @@ bool insideRing(const PlaneFrame& frame, const Ring& ring, const glm::dvec3& p) 
   return inside;
 }
 
+bool insidePolygon(const PlaneFrame& frame, const Polygon& polygon, const glm::dvec3& p) {
+  bool inside = insideRing(frame, polygon.outer, p);
+  for (const Ring& hole : polygon.holes) inside = inside != insideRing(frame, hole, p);
+  return inside;
+}
+
 }  // namespace rad

@@ -65,4 +65,8 @@ double segmentDistance(const glm::dvec2& q, const glm::dvec2& a, const glm::dvec
 /// Whether p, projected onto the frame's plane, lies strictly inside the projected ring.
 bool insideRing(const PlaneFrame& frame, const Ring& ring, const glm::dvec3& p);
 
+/// Whether p, on the frame's plane, lies inside the polygon: even-odd over its outer ring and
+/// its holes.
+bool insidePolygon(const PlaneFrame& frame, const Polygon& polygon, const glm::dvec3& p);
+
 }  // namespace rad
