@@ -143,6 +143,7 @@ struct RefineTest {
   const PatchMesh& mesh;
   const std::vector<VertexLight>& vertices;
   const MidpointLight& midpoints;
+  const std::vector<double>& enclosure;
   std::vector<int> lightOf;
   glm::dvec3 ambient;
   double exposure, contrast;
@@ -181,9 +182,17 @@ struct RefineTest {
     return false;
   }
 
+  /// A gap's mouth: one corner in the gap, another not.
+  bool gapMouth(const std::array<int, 3>& corner) const {
+    if (enclosure.empty()) return false;
+    const auto [low, high] = std::minmax({enclosure[size_t(corner[0])], enclosure[size_t(corner[1])],
+                                          enclosure[size_t(corner[2])]});
+    return high >= kInGap && low < kInGap;
+  }
+
   bool operator()(int e) const {
     std::array<int, 3> corner;
-    return midpointsDiffer(e, corner) || shadowCrosses(e, corner);
+    return midpointsDiffer(e, corner) || shadowCrosses(e, corner) || gapMouth(corner);
   }
 };
 
@@ -191,13 +200,14 @@ struct RefineTest {
 
 std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
                                   const DisplayEstimate& estimate, const AdaptiveOptions& options,
-                                  MidpointLight& midpoints, const std::vector<int>* among) {
+                                  MidpointLight& midpoints, const std::vector<double>& enclosure,
+                                  const std::vector<int>* among) {
   std::vector<int> out;
   if (!light.enabled()) return out;
   RAD_CHECK(light.vertices().size() == mesh.mesh.n_vertices());
   const std::vector<int> candidates = refinable(mesh, options, among);
   lightMidpoints(mesh, light, candidates, midpoints);
-  const RefineTest needsRefining{mesh, light.vertices(), midpoints, lightOfSamples(light), estimate.ambient,
+  const RefineTest needsRefining{mesh, light.vertices(), midpoints, enclosure, lightOfSamples(light), estimate.ambient,
                                  options.exposure > 0 ? options.exposure : estimate.exposure, options.contrast};
   for (int e : candidates)
     if (needsRefining(e)) out.push_back(e);
@@ -235,6 +245,19 @@ std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<i
   return known;
 }
 
+/// Extends `enclosure` to every vertex of the mesh (gapReach > 0): the share of each new
+/// vertex's short rays that met a surface within gapReach.
+void encloseNewVertices(const PatchMesh& mesh, const DirectLight& light, double gapReach,
+                        std::vector<double>& enclosure) {
+  if (!(gapReach > 0)) return;
+  const size_t from = enclosure.size();
+  std::vector<double> reach(mesh.mesh.n_vertices(), 0.0);
+  std::fill(reach.begin() + std::ptrdiff_t(from), reach.end(), gapReach);
+  const std::vector<int> met = light.surfacesWithin(mesh, reach);
+  constexpr double rays = kNearbyRaysPerSide * kNearbyRaysPerSide;
+  for (size_t v = from; v < met.size(); ++v) enclosure.push_back(met[v] / rays);
+}
+
 /// Whether the mesh has reached the element cap (said in the mesh's warnings).
 bool capReached(PatchMesh& mesh, const AdaptiveOptions& options) {
   if (options.maxElements <= 0 || mesh.elementCount() < options.maxElements) return false;
@@ -252,6 +275,8 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   stats.elementsBefore = stats.elementsAfter = mesh.elementCount();
   if (!light.enabled()) return stats;
   light.update(mesh);
+  std::vector<double> enclosure;
+  encloseNewVertices(mesh, light, options.gapReach, enclosure);
   const DisplayEstimate estimate = estimateDisplay(mesh, light);
   MidpointLight midpoints;
   stats.exposure = options.exposure > 0 ? options.exposure : estimate.exposure;
@@ -262,12 +287,13 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
   for (int round = 0; round < options.maxRounds && light.enabled() && !capReached(mesh, options); ++round) {
     progress.update(size_t(round));
     std::vector<int> marked =
-        elementsToRefine(mesh, light, estimate, options, midpoints, round ? &changed : nullptr);
+        elementsToRefine(mesh, light, estimate, options, midpoints, enclosure, round ? &changed : nullptr);
     if (marked.empty()) break;
     stats.marked += int(marked.size());
     std::unordered_map<int, std::pair<int, int>> between;
     std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed, between);
     light.update(mesh, &known, &between);
+    encloseNewVertices(mesh, light, options.gapReach, enclosure);
     ++stats.rounds;
   }
   stats.elementsAfter = mesh.elementCount();

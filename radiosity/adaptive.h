@@ -13,12 +13,22 @@
 namespace rad {
 
 
+/// A vertex is in a gap when at least this share of its short rays meet a surface (a floor
+/// point 6 mm under a sofa: all of them); at the foot of a wall about a half do, in a room's
+/// corner three quarters, and those are no gaps. An element with a corner in a gap and
+/// another not spans the gap's mouth.
+constexpr double kInGap = 0.875;
+
 struct AdaptiveOptions {
   double minElementEdge = 0;      ///< elements whose longest edge is this or less stay whole
   double contrast = kDefaultContrast;
   double exposure = 0;            ///< 0: estimated from the direct light (estimateExposure)
   int maxRounds = 64;
   long maxElements = 0;           ///< refinement stops once the mesh has this many (0: no cap)
+  /// Gaps narrower than this are looked for (0: none): an element across the mouth of one (the
+  /// floor where a sofa standing 6 mm above it ends, a ceiling round a fixture 9 mm under it)
+  /// is bisected too, the indirect light falling off there within centimetres.
+  double gapReach = 0;
 };
 
 struct AdaptiveStats {
@@ -49,12 +59,16 @@ using MidpointLight = std::unordered_map<uint64_t, VertexLight>;
 ///   linear interpolation follows, is left alone; or
 /// - two of their vertices see different samples on an emitter, and the light through the
 ///   samples one sees and the other does not is more than options.contrast on display
-///   (a shadow boundary crossing the element).
+///   (a shadow boundary crossing the element); or
+/// - with options.gapReach, one of its corners is in a gap and another not (kInGap, of the
+///   rays DirectLight::surfacesWithin casts that far): the element spans a gap's mouth.
 /// Midpoints are computed by rays once and kept in `midpoints`. With `among`, only those
 /// elements are looked at (the others are as they were when last looked at).
+/// `enclosure`: per vertex, with options.gapReach, the share of its rays that met a surface.
 std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
                                   const DisplayEstimate& shown, const AdaptiveOptions& options,
-                                  MidpointLight& midpoints, const std::vector<int>* among = nullptr);
+                                  MidpointLight& midpoints, const std::vector<double>& enclosure,
+                                  const std::vector<int>* among = nullptr);
 
 /// Refines the mesh until no element needs it (or maxRounds): each round bisects the marked
 /// elements (conforming, mesh/refine.h) and casts rays from the new vertices only.

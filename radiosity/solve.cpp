@@ -11,6 +11,7 @@
 #include "mesh/base/parallel.h"
 #include "mesh/results/default_camera.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/gather/gather_points.h"
 #include "radiosity/result.h"
 
 namespace rad {
@@ -66,6 +67,8 @@ AdaptiveOptions adaptiveOptions(const Settings& settings) {
   options.maxElements = settings.maxElements;
   options.contrast = settings.contrast;
   options.exposure = settings.exposure.value_or(0.0);
+  // Gaps narrower than the smallest element: only gathered light shows what falls off there.
+  if (settings.finalGather) options.gapReach = settings.minElementEdge;
   return options;
 }
 
@@ -106,6 +109,7 @@ void lightAndRefine(MeshedScene& s, std::shared_ptr<const PatchMesh> unrefined) 
     refine(s, std::move(unrefined));
   else
     s.direct->update(s.mesh);
+  if (s.base && s.settings.finalGather) s.ownHemicube = nearSurfaces(s.mesh, *s.base, *s.direct);
   if (!s.settings.vertexDirect) s.direct.reset();
 }
 
@@ -121,6 +125,8 @@ void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   if (s.settings.finalGather) estimate = estimateGather(s.mesh, s.scene.diagonal(), gatherOptions(s.settings, s.started));
   std::shared_ptr<GatherAhead> ahead = startGatherAhead(s, estimate, unrefined, options);
   if (rays) lightAndRefine(s, std::move(unrefined));
+  const auto own = std::count(s.ownHemicube.begin(), s.ownHemicube.end(), char(1));
+  if (own > 0) estimate = estimate.forVertices(estimate.vertices + double(own));
   s.gather = planGather(s.settings, estimate, s.mesh.patches.size(), timeLeft(s), std::move(ahead));
   if (!s.gather.leftOut.empty()) s.mesh.warnings.push_back(s.gather.leftOut);
 }
@@ -231,7 +237,8 @@ void RadiositySolve::gatherAtVertices(Solution& b) const {
   const std::vector<glm::dvec3>* direct = b.direct ? &b.direct->vertex : nullptr;
   const GatherRows* rendered = scene_.gather.ahead ? &scene_.gather.ahead->rows() : nullptr;
   std::vector<glm::dvec3> gathered =
-      finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather, rendered);
+      finalGather(mesh, scene_.base.get(), scene_.scene.diagonal(), start, direct, options, &b.gather, rendered,
+                  &scene_.ownHemicube);
   if (b.gather.timedOut) return;  // the progressive solution stays, with its ambient term
   b.gathered = std::move(gathered);
   b.B = elementMeans(mesh, *b.gathered);

@@ -53,6 +53,10 @@ struct MeshedScene {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   /// Mesh-file surfaces turned to face the lit space before meshing (settings.fixFacing).
   FacingRepair facing;
+  /// Per vertex refinement added (with the gather on): whether it gathers through its own
+  /// hemicube, another surface lying nearer to it than its base element is long (nearSurfaces);
+  /// empty: none does.
+  std::vector<char> ownHemicube;
 };
 
 struct MeshingOptions {

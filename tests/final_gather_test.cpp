@@ -9,11 +9,13 @@
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "mesh/results/reference_points.h"
 #include "radiosity/formfactors/flat_regions.h"
 #include "radiosity/gather/final_gather.h"
+#include "mesh/refine.h"
 #include "radiosity/gather/gather_points.h"
 #include "radiosity/true_error.h"
 #include "tests/solve_support.h"
@@ -131,18 +133,23 @@ TEST(FinalGatherTest, HemicubesRenderedAheadGiveTheSameLight) {
   EXPECT_EQ(same, ahead.size());
 }
 
-/// Where the gather renders: on the refined Cornell box, exactly the vertices of the mesh before
-/// refinement; every other vertex takes a convex combination of gathering vertices of its own
-/// surface, which reproduces a linear field exactly (barycentric weights in its base element).
+/// Where the gather renders: on the refined Cornell box, the vertices of the mesh before
+/// refinement and those refinement added beside another surface (nearSurfaces), and no other;
+/// every other vertex takes a convex combination of gathering vertices of its own surface,
+/// which reproduces a linear field exactly (barycentric weights in its base element).
 TEST(FinalGatherTest, RefinedVerticesInterpolateTheBaseVertices) {
   Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
   const Settings settings = resolveSettings(scene, {});
   const MeshedScene meshed = meshScene(std::move(scene), settings);
   ASSERT_TRUE(meshed.base);
   const PatchMesh& mesh = meshed.mesh;
-  const GatherPoints g = gatherPoints(mesh, meshed.base.get(), vertexReflectance(mesh));
-  EXPECT_EQ(size_t(g.count()), meshed.base->mesh.n_vertices());
-  EXPECT_LT(size_t(g.count()), mesh.mesh.n_vertices() / 2 + 1000);
+  const GatherPoints g = gatherPoints(mesh, meshed.base.get(), vertexReflectance(mesh), &meshed.ownHemicube);
+  const size_t own = size_t(std::count(meshed.ownHemicube.begin(), meshed.ownHemicube.end(), char(1)));
+  EXPECT_GT(own, 0u);
+  EXPECT_EQ(size_t(g.count()), meshed.base->mesh.n_vertices() + own);
+  EXPECT_LT(size_t(g.count()), mesh.mesh.n_vertices() * 3 / 4);
+  for (size_t v = 0; v < mesh.mesh.n_vertices(); ++v)
+    if (meshed.ownHemicube[v]) ASSERT_TRUE(g.at[v]) << v;
   auto at = [&](size_t v) {
     const auto& p = mesh.mesh.point(TriMesh::VertexHandle(int(v)));
     return glm::dvec3(p[0], p[1], p[2]);
@@ -165,6 +172,68 @@ TEST(FinalGatherTest, RefinedVerticesInterpolateTheBaseVertices) {
     ASSERT_NEAR(sum, 1, 1e-12) << v;
     ASSERT_NEAR(spread[v].x, linear[v].x, 1e-9) << v;
   }
+}
+
+/// The distance from p to the triangle (a, b, c): to its plane where p projects inside it,
+/// else to the nearest of its edges.
+double distanceToTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+  const glm::dvec3 q = p - n * glm::dot(p - a, n);
+  const bool inside = glm::dot(glm::cross(b - a, q - a), n) >= 0 && glm::dot(glm::cross(c - b, q - b), n) >= 0 &&
+                      glm::dot(glm::cross(a - c, q - c), n) >= 0;
+  if (inside) return std::abs(glm::dot(p - a, n));
+  auto toSegment = [&](const glm::dvec3& u, const glm::dvec3& w) {
+    const double t = std::clamp(glm::dot(p - u, w - u) / glm::dot(w - u, w - u), 0.0, 1.0);
+    return glm::length(p - (u + t * (w - u)));
+  };
+  return std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
+}
+
+/// The vertices refinement added that gather through their own hemicubes have another surface
+/// within their reach (their base element's longest edge; checked against every element of
+/// another surface side); some are left to interpolate; and on the floor under a sofa standing
+/// 6 mm above it every vertex refinement added gathers.
+TEST(FinalGatherTest, OwnHemicubesWhereAnotherSurfaceIsNear) {
+  Scene scene = loadSceneToSolve(test::kScenes + "cornell.json");
+  const Settings settings = resolveSettings(scene, {});
+  const MeshedScene meshed = meshScene(std::move(scene), settings);
+  const PatchMesh& mesh = meshed.mesh;
+  ASSERT_EQ(meshed.ownHemicube.size(), mesh.mesh.n_vertices());
+  size_t own = 0;
+  for (auto v : mesh.mesh.vertices()) {
+    if (!meshed.ownHemicube[size_t(v.idx())] || own++ % 7) continue;  // every 7th checked
+    double reach = 0;
+    int side = -1;
+    for (auto f : mesh.mesh.vf_range(v)) {
+      reach = std::max(reach, longestEdge(*meshed.base, mesh.base(f.idx())));
+      side = mesh.surface(f.idx()) * 2 + mesh.side(f.idx());
+    }
+    const glm::dvec3 p = PatchMesh::toGlm(mesh.mesh.point(v));
+    double nearest = HUGE_VAL;
+    for (int e = 0; e < mesh.elementCount(); ++e) {
+      if (mesh.surface(e) * 2 + mesh.side(e) == side) continue;
+      const auto c = mesh.corners(e);
+      nearest = std::min(nearest, distanceToTriangle(p, c[0], c[1], c[2]));
+    }
+    ASSERT_LE(nearest, reach * (1 + 1e-6)) << v.idx();
+  }
+  const size_t added = mesh.mesh.n_vertices() - meshed.base->mesh.n_vertices();
+  EXPECT_GT(own, added / 10);
+  EXPECT_LT(own, added * 9 / 10);
+
+  Scene gap = loadSceneToSolve(test::kData + "piercing/narrow_gap.json");
+  const Settings gapSettings = resolveSettings(gap, {});
+  const MeshedScene underSofa = meshScene(std::move(gap), gapSettings);
+  const PatchMesh& m = underSofa.mesh;
+  size_t under = 0;
+  for (auto v : m.mesh.vertices()) {
+    const glm::dvec3 p = PatchMesh::toGlm(m.mesh.point(v));
+    const bool floor = p.y == 0 && std::abs(p.x) < 0.79 && p.z > 0.41 && p.z < 1.19;
+    if (!floor || size_t(v.idx()) < underSofa.base->mesh.n_vertices()) continue;
+    ++under;
+    EXPECT_TRUE(underSofa.ownHemicube[size_t(v.idx())]) << p.x << " " << p.z;
+  }
+  EXPECT_GT(under, 0u);
 }
 
 TEST(FinalGatherTest, ElementsShowTheMeanOfTheirVertices) {

@@ -319,6 +319,7 @@ GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const Gat
     out.factors += double(f.elements.size());
   }
   out.culled = cube.culling() == HemicubeCulling::Hidden;
+  out.vertices = double(gathering.size());
   const double perProbe = double(gathering.size()) / double(probes);
   out.drawn *= perProbe;
   out.located *= perProbe;
@@ -328,10 +329,11 @@ GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const Gat
 
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
-                                    const GatherOptions& options, GatherStats* statsOut, const GatherRows* rendered) {
+                                    const GatherOptions& options, GatherStats* statsOut, const GatherRows* rendered,
+                                    const std::vector<char>* ownHemicube) {
   GatherStats stats;
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
-  const GatherPoints points = gatherPoints(mesh, base, rho);
+  const GatherPoints points = gatherPoints(mesh, base, rho, ownHemicube);
   stats.points = points.count();
   const PatchMesh& drawn = base ? *base : mesh;
   const int workers = workerCount(options.workers);

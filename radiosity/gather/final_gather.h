@@ -15,9 +15,10 @@
 // of its corners (the mean of the linear interpolant Gouraud shading shows), d the direct
 // light at the vertex (by rays, when given; then an emitter's emission is not gathered again)
 // or else ρ·F·E. Every row of a closed scene's F sums to 1, so a furnace comes out exact. The
-// system is solved by BiCGSTAB from the progressive solution. Only the vertices of the mesh as
-// built before refinement render hemicubes; the others interpolate what those gather
-// (radiosity/gather/gather_points.h), while their direct light is their own rays'.
+// system is solved by BiCGSTAB from the progressive solution. The vertices of the mesh as built
+// before refinement render hemicubes, and those refinement added where another surface is near;
+// the others interpolate what those gather (radiosity/gather/gather_points.h), while their
+// direct light is their own rays'.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -147,11 +148,13 @@ class GatherAhead {
 /// `base`: the mesh as built before refinement (or null): its vertices gather, and the
 /// hemicubes draw its elements, each valued as the area-weighted mean of its parts.
 /// `rendered`: the drawn mesh's rows if rendered already (GatherAhead), else null.
+/// `ownHemicube`: per vertex refinement added, whether it gathers through its own hemicube
+/// (nearSurfaces), or null: none does.
 /// Empty if options.deadline came before every hemicube was rendered (stats: timedOut).
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* stats = nullptr,
-                                    const GatherRows* rendered = nullptr);
+                                    const GatherRows* rendered = nullptr, const std::vector<char>* own = nullptr);
 
 /// What the gather would cost, from kGatherWorkProbes of its vertices spread over the mesh.
 /// Deterministic: the same mesh gives the same figures on any machine.
@@ -166,6 +169,17 @@ struct GatherEstimate {
   double factors = 0;
   /// Whether its hemicubes cull hidden triangles (Hemicube::cullingPays).
   bool culled = false;
+  /// The gathering vertices it is for.
+  double vertices = 0;
+
+  /// The same for `count` gathering vertices like these (vertices refinement added that
+  /// gather through their own hemicubes).
+  GatherEstimate forVertices(double count) const {
+    GatherEstimate out = *this;
+    const double scale = vertices > 0 ? count / vertices : 0;
+    out.drawn *= scale, out.located *= scale, out.factors *= scale, out.vertices = count;
+    return out;
+  }
 
   /// The seconds it would take on `workers` cores of this machine class.
   double seconds(int workers) const {

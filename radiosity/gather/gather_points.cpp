@@ -5,6 +5,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/refine.h"
+#include "radiosity/light/direct_light.h"
+
 namespace rad {
 namespace {
 
@@ -84,7 +87,23 @@ Field GatherPoints::spread(const Field& atPoints) const {
 
 int GatherPoints::count() const { return int(std::count(at.begin(), at.end(), true)); }
 
-GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Field& rho) {
+std::vector<char> nearSurfaces(const PatchMesh& mesh, const PatchMesh& base, const DirectLight& light) {
+  std::vector<double> reach(mesh.mesh.n_vertices(), 0.0);
+  for (auto f : mesh.mesh.faces()) {
+    if (mesh.reflectance(f.idx()) == glm::dvec3(0.0)) continue;  // black: gathers nothing
+    const double edge = longestEdge(base, mesh.base(f.idx()));
+    for (auto v : mesh.mesh.fv_range(f)) reach[size_t(v.idx())] = std::max(reach[size_t(v.idx())], edge);
+  }
+  for (int v : baseCorners(mesh, base))
+    if (v >= 0) reach[size_t(v)] = 0;
+  const std::vector<int> met = light.surfacesWithin(mesh, reach);
+  std::vector<char> out(met.size(), 0);
+  for (size_t v = 0; v < met.size(); ++v) out[v] = met[v] > 0;
+  return out;
+}
+
+GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Field& rho,
+                          const std::vector<char>* ownHemicube) {
   const size_t n = mesh.mesh.n_vertices();
   GatherPoints g{std::vector<bool>(n, false), std::vector<std::vector<std::pair<int, double>>>(n),
                  std::vector<int>(n, -1)};
@@ -99,6 +118,10 @@ GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Fi
   for (auto f : mesh.mesh.faces())
     for (auto v : mesh.mesh.fv_range(f)) {
       if (!g.from[size_t(v.idx())].empty() || rho[size_t(v.idx())] == glm::dvec3(0.0)) continue;
+      if (ownHemicube && !ownHemicube->empty() && (*ownHemicube)[size_t(v.idx())]) {
+        gatherAt(g, v.idx(), -1);
+        continue;
+      }
       g.from[size_t(v.idx())] = interpolated(mesh, *base, at, f.idx(), v);
       if (g.from[size_t(v.idx())].empty()) gatherAt(g, v.idx(), -1);  // its base element's corner is lost
     }

@@ -1,10 +1,11 @@
 #pragma once
 // Where the final gather renders its hemicubes. Adaptive refinement adds vertices where the
-// direct light changes (a penumbra's edge), which the rays compute at every vertex; the
-// indirect light there is as smooth as elsewhere. So the vertices of the mesh as built before
-// refinement gather (its contact lines are graded already, where the indirect light does change
-// fast), and a vertex refinement added takes the light gathered at the corners of its base
-// element, interpolated linearly at its position.
+// direct light changes (a penumbra's edge), which the rays compute at every vertex. The
+// vertices of the mesh as built before refinement gather; a vertex refinement added takes the
+// light gathered at the corners of its base element, interpolated linearly at its position,
+// unless another surface is nearer to it than that element is long (a tread's side beside the
+// wall it enters, the floor under a sofa's edge, a ceiling round a lamp): there the indirect
+// light changes faster than the corners follow, and the vertex gathers through its own hemicube.
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "mesh/patch_mesh.h"
 
 namespace rad {
+
+class DirectLight;
 
 struct GatherPoints {
   std::vector<bool> at;  ///< per vertex: gathers through its own hemicube
@@ -30,7 +33,14 @@ struct GatherPoints {
 };
 
 /// The gathering vertices of `mesh`, whose reflectance per vertex is `rho` (black vertices
-/// gather nothing): with `base` (the mesh before refinement) its corners, else every vertex.
-GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const std::vector<glm::dvec3>& rho);
+/// gather nothing): with `base` (the mesh before refinement) its corners and the vertices
+/// `ownHemicube` marks (if given), else every vertex.
+GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const std::vector<glm::dvec3>& rho,
+                          const std::vector<char>* ownHemicube = nullptr);
+
+/// Per vertex of `mesh`, refined from `base`: whether it gathers through its own hemicube,
+/// another surface lying nearer to it than its base element's longest edge (any of the short
+/// rays DirectLight::surfacesWithin casts meets one). The corners of `base` are not asked.
+std::vector<char> nearSurfaces(const PatchMesh& mesh, const PatchMesh& base, const DirectLight& light);
 
 }  // namespace rad

@@ -37,6 +37,8 @@ constexpr int kMaxRayEmitterPatches = 256;
 /// A light a point would cast at least this many rays to is first tested whole (ClearSight):
 /// when nothing stands between them, every sample is visible and no ray is cast.
 constexpr int kClearSightRays = 32;
+/// DirectLight::surfacesWithin casts this many squared short rays from a vertex.
+constexpr int kNearbyRaysPerSide = 4;
 
 /// The most emitting patches a mesh of the scene with elements of at most `elementEdge` may
 /// have, about, before it is meshed: every emitting polygon side a patch per element, its area
@@ -99,6 +101,10 @@ class DirectLight {
   long seenWhole() const { return seenWhole_; }
   /// Per vertex, the direct light (radiosity).
   std::vector<glm::dvec3> radiosity() const;
+  /// Per vertex of `mesh` with reach[v] > 0: how many of kNearbyRaysPerSide² short rays
+  /// (cosine-weighted over its hemisphere, reach[v] long, from where its light is looked for)
+  /// meet another surface; 0 for the others.
+  std::vector<int> surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach) const;
 
   /// A point to find the direct light at: on a surface with unit normal `normal` and
   /// reflectance `rho`; rays start a little off it, towards `inwards` (its own elements).

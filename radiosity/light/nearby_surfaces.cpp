@@ -1,0 +1,59 @@
+// Direct light ▸ nearby surfaces: how much of a vertex's hemisphere another surface fills within
+// a given reach, by short rays cast against the elements the direct light's rays are.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/base/parallel.h"
+#include "mesh/scene/geometry.h"
+#include "radiosity/light/direct_light.h"
+#include "radiosity/light/direct_light_internal.h"
+
+namespace rad {
+namespace {
+
+/// A uniform number in [0, 1) from vertex v and draw k (a fixed hash: the same on any machine).
+double uniform(uint64_t v, uint64_t k) {
+  uint64_t z = v * 0x9e3779b97f4a7c15ull + k * 0xd1342543de82ef95ull + 0x632be59bd9b4e019ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+}
+
+/// The ends of vertex v's short rays from `origin`: kNearbyRaysPerSide² cosine-weighted
+/// directions over the hemisphere of `normal`, stratified and jittered, each `reach` long.
+std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm::dvec3& normal, double reach) {
+  const PlaneFrame frame = planeFrame(origin, normal);
+  constexpr int n = kNearbyRaysPerSide;
+  std::vector<glm::dvec3> out;
+  out.reserve(size_t(n * n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const uint64_t k = uint64_t(i * n + j);
+      const double s = (i + uniform(v, 2 * k)) / n, phi = 2 * M_PI * (j + uniform(v, 2 * k + 1)) / n;
+      const double r = std::sqrt(s);
+      const glm::dvec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - s) * normal;
+      out.push_back(origin + reach * d);
+    }
+  return out;
+}
+
+}  // namespace
+
+std::vector<int> DirectLight::surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach) const {
+  std::vector<int> out(reach.size(), 0);
+  if (!enabled_) return out;
+  parallelFor(reach.size(), workers_, [&](size_t v, int) {
+    if (!(reach[v] > 0)) return;
+    const Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(int(v)));
+    const glm::dvec3 origin = offSurface(probe, sceneSize_);
+    std::vector<char> blocked;
+    rays_impl_->blocked(origin, rayEnds(v, origin, probe.normal, reach[v]), blocked);
+    for (char b : blocked) out[v] += b ? 1 : 0;
+  }, 64);
+  return out;
+}
+
+}  // namespace rad
