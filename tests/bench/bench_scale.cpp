@@ -126,9 +126,9 @@ int main(int argc, char** argv) {
     row.print("loading and splitting", loading, loadingPeak);
     for (const rad::StageTime& s : meshed.mesh.stats.stages.list()) row.print(s.name, s.seconds, s.peakMiB);
     row.print("direct light and refinement", meshing - meshed.mesh.stats.stages.total());
-    const rad::GatherEstimate& gather = meshed.gatherEstimate;
+    const rad::GatherEstimate& gather = meshed.gather.estimate;
     std::fprintf(stderr, "bench_scale: gather %s: %.3g drawn triangles, %.3g located pixels, %.3g factors (%s)\n",
-                 meshed.gather ? "on" : "skipped", gather.drawn, gather.located, gather.factors,
+                 meshed.gather.on ? "on" : "skipped", gather.drawn, gather.located, gather.factors,
                  gather.iterates(rad::GatherOptions{}) ? "iterated" : "over its memory: gathered once");
     if (!solve) return 0;
     start = Clock::now();
