@@ -253,7 +253,7 @@ void encloseNewVertices(const PatchMesh& mesh, const DirectLight& light, double 
   const size_t from = enclosure.size();
   std::vector<double> reach(mesh.mesh.n_vertices(), 0.0);
   std::fill(reach.begin() + std::ptrdiff_t(from), reach.end(), gapReach);
-  const std::vector<int> met = light.surfacesWithin(mesh, reach);
+  const std::vector<int> met = light.surfacesWithin(mesh, reach, kGapConeDeg);
   constexpr double rays = kNearbyRaysPerSide * kNearbyRaysPerSide;
   for (size_t v = from; v < met.size(); ++v) enclosure.push_back(met[v] / rays);
 }

@@ -18,6 +18,9 @@ namespace rad {
 /// corner three quarters, and those are no gaps. An element with a corner in a gap and
 /// another not spans the gap's mouth.
 constexpr double kInGap = 0.875;
+/// The rays that look for a gap keep within this angle of the normal: past it they graze the
+/// far side of a gap and leave the reach before meeting it, by chance.
+constexpr double kGapConeDeg = 60;
 
 struct AdaptiveOptions {
   double minElementEdge = 0;      ///< elements whose longest edge is this or less stay whole

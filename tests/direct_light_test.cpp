@@ -14,6 +14,7 @@
 #include "mesh/base/color.h"
 #include "mesh/refine.h"
 #include "mesh/scene/readers/scene_loader.h"
+#include "radiosity/adaptive.h"
 #include "radiosity/formfactors/point_polygon.h"
 #include "radiosity/light/direct_light.h"
 #include "radiosity/solve.h"
@@ -55,6 +56,38 @@ std::vector<glm::dvec3> directLight(const MeshedScene& s, int raysPerPoint, long
   for (const VertexLight& v : light.lightAt(probes)) out.push_back(v.radiosity);
   rays = light.rays();
   return out;
+}
+
+/// Short rays from the vertices (DirectLight::surfacesWithin): on the narrow-gap room's floor,
+/// from under the sofa (6 mm under it) every ray within kGapConeDeg of the normal meets a surface
+/// within 3 cm (over the whole hemisphere some graze the floor past 3 cm) and none from the open
+/// floor; within 1 mm the gap's 6 mm are out of reach; a vertex no face uses (it has no normal)
+/// casts none.
+TEST(DirectLightTest, ShortRaysMeetWhatIsWithinTheirReach) {
+  MeshedScene s = meshed(test::kData + "piercing/narrow_gap.json");
+  DirectLight light(s.mesh, s.scene.diagonal());
+  const auto lone = s.mesh.mesh.add_vertex(TriMesh::Point(0, 1, 0));
+  constexpr int kRays = kNearbyRaysPerSide * kNearbyRaysPerSide;
+  auto metWithin = [&](double reach) {
+    return light.surfacesWithin(s.mesh, std::vector<double>(s.mesh.mesh.n_vertices(), reach), kGapConeDeg);
+  };
+  const std::vector<int> within3cm = metWithin(0.03), within1mm = metWithin(0.001);
+  int under = 0, open = 0;
+  for (auto v : s.mesh.mesh.vertices()) {
+    const auto p = s.mesh.mesh.point(v);
+    if (v == lone || p[1] != 0) continue;
+    if (std::abs(p[0]) < 0.75 && p[2] > 0.45 && p[2] < 1.15) {
+      ++under;
+      EXPECT_EQ(within3cm[size_t(v.idx())], kRays) << p;
+      EXPECT_EQ(within1mm[size_t(v.idx())], 0) << p;
+    } else if (std::abs(p[0]) < 1.5 && p[2] > -1.5 && p[2] < 0.3) {
+      ++open;
+      EXPECT_EQ(within3cm[size_t(v.idx())], 0) << p;
+    }
+  }
+  EXPECT_GT(under, 0);
+  EXPECT_GT(open, 0);
+  EXPECT_EQ(within3cm[size_t(lone.idx())], 0);
 }
 
 TEST(DirectLightTest, ALoneLightCastsEverySample) {

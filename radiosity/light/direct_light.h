@@ -102,9 +102,10 @@ class DirectLight {
   /// Per vertex, the direct light (radiosity).
   std::vector<glm::dvec3> radiosity() const;
   /// Per vertex of `mesh` with reach[v] > 0: how many of kNearbyRaysPerSide² short rays
-  /// (cosine-weighted over its hemisphere, reach[v] long, from where its light is looked for)
-  /// meet another surface; 0 for the others.
-  std::vector<int> surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach) const;
+  /// (cosine-weighted within coneDeg of its normal, reach[v] long, from where its light is
+  /// looked for) meet another surface; 0 for the others and for a vertex no face uses.
+  std::vector<int> surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach,
+                                  double coneDeg = 90) const;
 
   /// A point to find the direct light at: on a surface with unit normal `normal` and
   /// reflectance `rho`; rays start a little off it, towards `inwards` (its own elements).

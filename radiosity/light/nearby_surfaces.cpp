@@ -1,10 +1,12 @@
 // Direct light ▸ nearby surfaces: how much of a vertex's hemisphere another surface fills within
 // a given reach, by short rays cast against the elements the direct light's rays are.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "mesh/base/parallel.h"
 #include "mesh/scene/geometry.h"
@@ -23,8 +25,10 @@ double uniform(uint64_t v, uint64_t k) {
 }
 
 /// The ends of vertex v's short rays from `origin`: kNearbyRaysPerSide² cosine-weighted
-/// directions over the hemisphere of `normal`, stratified and jittered, each `reach` long.
-std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm::dvec3& normal, double reach) {
+/// directions within `sin2` (the squared sine of the cone's half-angle) of `normal`,
+/// stratified and jittered, each `reach` long.
+std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm::dvec3& normal, double reach,
+                                double sin2) {
   const PlaneFrame frame = planeFrame(origin, normal);
   constexpr int n = kNearbyRaysPerSide;
   std::vector<glm::dvec3> out;
@@ -32,7 +36,7 @@ std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm:
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const uint64_t k = uint64_t(i * n + j);
-      const double s = (i + uniform(v, 2 * k)) / n, phi = 2 * M_PI * (j + uniform(v, 2 * k + 1)) / n;
+      const double s = sin2 * (i + uniform(v, 2 * k)) / n, phi = 2 * M_PI * (j + uniform(v, 2 * k + 1)) / n;
       const double r = std::sqrt(s);
       const glm::dvec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - s) * normal;
       out.push_back(origin + reach * d);
@@ -42,15 +46,21 @@ std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm:
 
 }  // namespace
 
-std::vector<int> DirectLight::surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach) const {
+std::vector<int> DirectLight::surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach,
+                                             double coneDeg) const {
   std::vector<int> out(reach.size(), 0);
   if (!enabled_) return out;
+  const double sin2 = std::pow(std::sin(glm::radians(std::clamp(coneDeg, 0.0, 90.0))), 2);
   parallelFor(reach.size(), workers_, [&](size_t v, int) {
     if (!(reach[v] > 0)) return;
-    const Probe probe = vertexProbe(mesh, TriMesh::VertexHandle(int(v)));
+    const TriMesh::VertexHandle handle{int(v)};
+    if (mesh.mesh.is_isolated(handle)) return;  // no face: no normal, no side to look from
+    const Probe probe = vertexProbe(mesh, handle);
     const glm::dvec3 origin = offSurface(probe, sceneSize_);
+    const double normal = glm::length(probe.normal);
+    if (!(std::abs(normal - 1) < 1e-3) || !std::isfinite(glm::length(origin))) return;
     std::vector<char> blocked;
-    rays_impl_->blocked(origin, rayEnds(v, origin, probe.normal, reach[v]), blocked);
+    rays_impl_->blocked(origin, rayEnds(v, origin, probe.normal, reach[v], sin2), blocked);
     for (char b : blocked) out[v] += b ? 1 : 0;
   }, 64);
   return out;
