@@ -21,7 +21,8 @@ struct GatherPlan {
   /// Why the gather the settings ask for is left out, as the warning says it; empty when it
   /// runs or was not asked for.
   std::string leftOut;
-  /// What it costs: estimateGather over the mesh before refinement (zeros when not asked for).
+  /// What it costs: estimateGather over the mesh before refinement, scaled to the vertices
+  /// refinement added that gather through their own hemicubes (zeros when not asked for).
   GatherEstimate estimate{};
   /// What the progressive solve shoots with: the settings' gather start when the gather runs
   /// (a hundredth of a shot per patch when it iterates, Settings::shooting), else the

@@ -125,8 +125,7 @@ void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   if (s.settings.finalGather) estimate = estimateGather(s.mesh, s.scene.diagonal(), gatherOptions(s.settings, s.started));
   std::shared_ptr<GatherAhead> ahead = startGatherAhead(s, estimate, unrefined, options);
   if (rays) lightAndRefine(s, std::move(unrefined));
-  const auto own = std::count(s.ownHemicube.begin(), s.ownHemicube.end(), char(1));
-  if (own > 0) estimate = estimate.forVertices(estimate.vertices + double(own));
+  if (ownHemicubes(s) > 0) estimate = estimate.forVertices(estimate.vertices + double(ownHemicubes(s)));
   s.gather = planGather(s.settings, estimate, s.mesh.patches.size(), timeLeft(s), std::move(ahead));
   if (!s.gather.leftOut.empty()) s.mesh.warnings.push_back(s.gather.leftOut);
 }
@@ -160,7 +159,7 @@ Scene loadSceneToSolve(const std::string& path) {
 }
 
 MeshedScene meshScene(Scene scene, const Settings& settings, const MeshingOptions& options) {
-  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr, {}, std::chrono::steady_clock::now(), {}};
+  MeshedScene s{std::move(scene), settings, {}, nullptr, {}, nullptr, {}, std::chrono::steady_clock::now(), {}, {}};
   const auto facingStart = StageTimes::Clock::now();
   if (settings.fixFacing) s.facing = turnToLitSpace(s.scene);
   const double facingSeconds = StageTimes::since(facingStart);

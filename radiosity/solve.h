@@ -9,6 +9,7 @@
 //   RadiositySolve solve(scene);
 //   while (solve.step()) { ... solve.solver().unshotFraction() ... }
 //   Solution solution = solve.bake();
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -53,11 +54,16 @@ struct MeshedScene {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   /// Mesh-file surfaces turned to face the lit space before meshing (settings.fixFacing).
   FacingRepair facing;
-  /// Per vertex refinement added (with the gather on): whether it gathers through its own
-  /// hemicube, another surface lying nearer to it than its base element is long (nearSurfaces);
-  /// empty: none does.
+  /// Per vertex (with the gather on and refinement done): whether, added by refinement, it
+  /// gathers through its own hemicube, another surface lying nearer to it than its base element
+  /// is long (nearSurfaces); empty: none does.
   std::vector<char> ownHemicube;
 };
+
+/// How many vertices gather through hemicubes of their own (MeshedScene::ownHemicube).
+inline long ownHemicubes(const MeshedScene& s) {
+  return long(std::count(s.ownHemicube.begin(), s.ownHemicube.end(), char(1)));
+}
 
 struct MeshingOptions {
   /// An error when no emitting element is left once contacts are cut, before any ray is cast

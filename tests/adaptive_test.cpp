@@ -102,7 +102,7 @@ TEST(AdaptiveTest, FurnaceNeedsNoRefinement) {
 
 /// The longest edge of the ceiling elements (y = 3) of a meshed narrow_gap.json that reach from
 /// over its fixture, `inside` within its outline (|x|, |z| < 0.3 − inside), out past it (|x| or
-/// |z| > 0.3): across the mouth of the 9 mm gap.
+/// |z| > 0.3): across the mouth of the 9 mm gap (0: none).
 double longestAcrossTheFixturesOutline(const PatchMesh& mesh, double inside) {
   double longest = 0;
   for (int e = 0; e < mesh.elementCount(); ++e) {
@@ -118,21 +118,30 @@ double longestAcrossTheFixturesOutline(const PatchMesh& mesh, double inside) {
   return longest;
 }
 
-/// Gaps' mouths: with the final gather, the ceiling elements that reach from over a fixture
-/// hanging 9 mm under it (a smallest element within its outline or more) out past it (the
-/// direct light none on either side) are refined away: none is left that long (measured);
-/// without the gather (no gap looked for) one is 7.8 smallest elements long.
-TEST(AdaptiveTest, GapsMouthsRefinedWithTheGather) {
+/// Gaps' mouths: the ceiling elements that reach from over a fixture hanging 9 mm under it (a
+/// smallest element within its outline or more) out past it (the direct light none on either
+/// side) are refined away when gaps are looked for (none is left that long); refining the same
+/// mesh without looking for them leaves one 7.8 smallest elements long. As `radiosity solve`
+/// refines: the same mesh, light and options but for AdaptiveOptions::gapReach.
+TEST(AdaptiveTest, GapsMouthsRefinedWhenLookedFor) {
   const Scene scene = loadSceneToSolve(test::kData + "piercing/narrow_gap.json");
   const Settings settings = resolveSettings(scene, {});
-  const double smallest = settings.minElementEdge;
-  const MeshedScene gathered = meshScene(scene, settings);
-  EXPECT_LE(longestAcrossTheFixturesOutline(gathered.mesh, smallest), smallest);
   SolverBlock flags;
-  flags.finalGather = false;
-  flags.minElementEdge = smallest;
-  const MeshedScene shot = meshScene(scene, resolveSettings(scene, flags));
-  EXPECT_GT(longestAcrossTheFixturesOutline(shot.mesh, smallest), 3 * smallest);
+  flags.adaptive = false;
+  const MeshedScene unrefined = meshScene(scene, resolveSettings(scene, flags));
+  const double smallest = settings.minElementEdge;
+  auto refinedWith = [&](double gapReach) {
+    PatchMesh mesh = unrefined.mesh;
+    DirectLight light(mesh, unrefined.scene.diagonal());
+    AdaptiveOptions options;
+    options.minElementEdge = smallest;
+    options.contrast = settings.contrast;
+    options.gapReach = gapReach;
+    refineAdaptively(mesh, light, options);
+    return mesh;
+  };
+  EXPECT_GT(longestAcrossTheFixturesOutline(refinedWith(0), smallest), 3 * smallest);
+  EXPECT_EQ(longestAcrossTheFixturesOutline(refinedWith(smallest), smallest), 0);
 }
 
 /// The exact visible factor of scenes/penumbra.json's light from floor point x: the light's

@@ -134,11 +134,11 @@ void printAdaptive(const Settings& settings, const AdaptiveStats& adaptive) {
 std::string gatherLine(const MeshedScene& meshed) {
   if (!meshed.gather.on) return meshed.settings.finalGather ? "skipped (over its budget)" : "off";
   const PatchMesh& drawn = meshed.base ? *meshed.base : meshed.mesh;
-  const long own = long(std::count(meshed.ownHemicube.begin(), meshed.ownHemicube.end(), char(1)));
+  const long own = ownHemicubes(meshed);
   const long added = long(meshed.mesh.mesh.n_vertices()) - long(drawn.mesh.n_vertices());
   const std::string others =
-      meshed.base ? " + " + std::to_string(own) + " (the mesh's before refinement, and those refinement added beside " +
-                        "another surface; its other " + std::to_string(added - own) + " interpolate)"
+      meshed.base ? " before refinement and at " + std::to_string(own) + " it added beside another surface (its other " +
+                        std::to_string(added - own) + " interpolate)"
                   : "";
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.2g", meshed.gather.estimate.seconds(workerCount(0)));

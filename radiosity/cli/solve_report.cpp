@@ -174,7 +174,7 @@ Json gatherBlock(const Solution& solution) {
   const GatherStats& g = solution.gather;
   if (g.timedOut) return {{"timed_out", true}, {"hemicube_seconds", g.hemicubeSeconds}};
   if (!solution.gathered) return Json();
-  return {{"points", g.points},           {"factors", g.factors},
+  return {{"points", g.points},           {"own_hemicubes", g.ownHemicubes}, {"factors", g.factors},
           {"iterated", g.iterated},       {"iterations", g.iterations},
           {"residual", g.residual},       {"hemicube_seconds", g.hemicubeSeconds},
           {"rendered_ahead", g.renderedAhead}, {"solve_seconds", g.solveSeconds}};

@@ -304,6 +304,18 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
   return out;
 }
 
+namespace {
+
+/// The gathering vertices that are not the drawn mesh's: they render hemicubes of their own.
+std::vector<int> lonersOf(const GatherPoints& points) {
+  std::vector<int> out;
+  for (size_t v = 0; v < points.at.size(); ++v)
+    if (points.at[v] && points.drawn[v] < 0) out.push_back(int(v));
+  return out;
+}
+
+}  // namespace
+
 GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const GatherOptions& options) {
   const std::vector<int> gathering = gatheringVertices(mesh);
   GatherEstimate out;
@@ -333,8 +345,7 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
                                     const std::vector<char>* ownHemicube) {
   GatherStats stats;
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
-  const GatherPoints points = gatherPoints(mesh, base, rho, ownHemicube);
-  stats.points = points.count();
+  GatherPoints points = gatherPoints(mesh, base, rho, ownHemicube);
   const PatchMesh& drawn = base ? *base : mesh;
   const int workers = workerCount(options.workers);
   const Interpolation W = interpolation(mesh, base);
@@ -347,10 +358,21 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   const GatherRows& ofDrawn = rendered && rendered->kept ? *rendered : now;
   GatherRows own;
   own.factors = ofDrawn.factors;  // counted against the same budget
-  std::vector<int> loners;
-  for (size_t v = 0; v < points.at.size(); ++v)
-    if (points.at[v] && points.drawn[v] < 0) loners.push_back(int(v));
+  std::vector<int> loners = lonersOf(points);
   if (!loners.empty()) renderRows(mesh, drawn, sceneSize, loners, options, &y, nullptr, own);
+  // Past the deadline with the drawn mesh's rows all there, the vertices refinement added
+  // interpolate their base corners, as they would without hemicubes of their own.
+  if (own.timedOut && !ofDrawn.timedOut && ownHemicube) {
+    GatherPoints interpolating = gatherPoints(mesh, base, rho);
+    if (lonersOf(interpolating).empty()) {
+      points = std::move(interpolating);
+      loners.clear();
+      own = GatherRows{};
+      own.factors = ofDrawn.factors;
+    }
+  }
+  stats.points = points.count();
+  stats.ownHemicubes = int(loners.size());
   stats.factors = own.factors;
   stats.timedOut = ofDrawn.timedOut || own.timedOut;
   stats.hemicubeSeconds = ofDrawn.seconds + own.seconds;

@@ -77,6 +77,7 @@ struct GatherOptions {
 
 struct GatherStats {
   int points = 0;        ///< vertices gathered at
+  int ownHemicubes = 0;  ///< of them, vertices refinement added (beside another surface)
   long factors = 0;      ///< non-zero form factors over all of them
   bool iterated = false; ///< the vertex system solved (false: gathered once, over memory)
   int iterations = 0;    ///< BiCGSTAB iterations
@@ -148,13 +149,15 @@ class GatherAhead {
 /// `base`: the mesh as built before refinement (or null): its vertices gather, and the
 /// hemicubes draw its elements, each valued as the area-weighted mean of its parts.
 /// `rendered`: the drawn mesh's rows if rendered already (GatherAhead), else null.
-/// `ownHemicube`: per vertex refinement added, whether it gathers through its own hemicube
-/// (nearSurfaces), or null: none does.
+/// `ownHemicube`: per vertex, whether (added by refinement) it gathers through its own hemicube
+/// (nearSurfaces), or null: none does. Past the deadline with the drawn mesh's rows all there,
+/// those interpolate their base corners instead.
 /// Empty if options.deadline came before every hemicube was rendered (stats: timedOut).
 std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base, double sceneSize,
                                     const std::vector<glm::dvec3>& start, const std::vector<glm::dvec3>* direct,
                                     const GatherOptions& options, GatherStats* stats = nullptr,
-                                    const GatherRows* rendered = nullptr, const std::vector<char>* own = nullptr);
+                                    const GatherRows* rendered = nullptr,
+                                    const std::vector<char>* ownHemicube = nullptr);
 
 /// What the gather would cost, from kGatherWorkProbes of its vertices spread over the mesh.
 /// Deterministic: the same mesh gives the same figures on any machine.
@@ -177,7 +180,10 @@ struct GatherEstimate {
   GatherEstimate forVertices(double count) const {
     GatherEstimate out = *this;
     const double scale = vertices > 0 ? count / vertices : 0;
-    out.drawn *= scale, out.located *= scale, out.factors *= scale, out.vertices = count;
+    out.drawn *= scale;
+    out.located *= scale;
+    out.factors *= scale;
+    out.vertices = count;
     return out;
   }
 

@@ -103,7 +103,9 @@ class DirectLight {
   std::vector<glm::dvec3> radiosity() const;
   /// Per vertex of `mesh` with reach[v] > 0: how many of kNearbyRaysPerSide² short rays
   /// (cosine-weighted within coneDeg of its normal, reach[v] long, from where its light is
-  /// looked for) meet another surface; 0 for the others and for a vertex no face uses.
+  /// looked for) meet a surface (any element: its own surface's too, where that bends towards
+  /// it); 0 for the others, and for a vertex no face uses or whose normal is not of unit
+  /// length (its faces cancel out): it has no side to look from.
   std::vector<int> surfacesWithin(const PatchMesh& mesh, const std::vector<double>& reach,
                                   double coneDeg = 90) const;
 

@@ -9,6 +9,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "mesh/base/parallel.h"
+#include "mesh/base/random.h"
 #include "mesh/scene/geometry.h"
 #include "radiosity/light/direct_light.h"
 #include "radiosity/light/direct_light_internal.h"
@@ -16,13 +17,9 @@
 namespace rad {
 namespace {
 
-/// A uniform number in [0, 1) from vertex v and draw k (a fixed hash: the same on any machine).
-double uniform(uint64_t v, uint64_t k) {
-  uint64_t z = v * 0x9e3779b97f4a7c15ull + k * 0xd1342543de82ef95ull + 0x632be59bd9b4e019ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-}
+/// The seed of the short rays' jitter: each vertex draws its own stream of it (the same on any
+/// machine and any number of threads).
+constexpr uint64_t kJitterSeed = 1;
 
 /// The ends of vertex v's short rays from `origin`: kNearbyRaysPerSide² cosine-weighted
 /// directions within `sin2` (the squared sine of the cone's half-angle) of `normal`,
@@ -31,12 +28,13 @@ std::vector<glm::dvec3> rayEnds(uint64_t v, const glm::dvec3& origin, const glm:
                                 double sin2) {
   const PlaneFrame frame = planeFrame(origin, normal);
   constexpr int n = kNearbyRaysPerSide;
+  Random jitter = Random::stream(kJitterSeed, v);
   std::vector<glm::dvec3> out;
   out.reserve(size_t(n * n));
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const uint64_t k = uint64_t(i * n + j);
-      const double s = sin2 * (i + uniform(v, 2 * k)) / n, phi = 2 * M_PI * (j + uniform(v, 2 * k + 1)) / n;
+      const double s = sin2 * (i + jitter.next()) / n;
+      const double phi = 2 * M_PI * (j + jitter.next()) / n;
       const double r = std::sqrt(s);
       const glm::dvec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - s) * normal;
       out.push_back(origin + reach * d);

@@ -11,7 +11,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "radiosity/pathtrace/random.h"
+#include "mesh/base/random.h"
 #include "radiosity/pathtrace/trace_scene.h"
 
 namespace rad::pathtrace {

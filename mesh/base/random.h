@@ -1,9 +1,10 @@
 #pragma once
-// The path tracer's random numbers: SplitMix64 (Steele, Lea & Flood 2014), one 64-bit state,
-// a sound generator for many independent streams whose seeds are themselves mixed.
+// Random numbers for the path tracer and the solver's jittered rays: SplitMix64 (Steele, Lea &
+// Flood 2014), one 64-bit state, a sound generator for many independent streams whose seeds are
+// themselves mixed.
 #include <cstdint>
 
-namespace rad::pathtrace {
+namespace rad {
 
 /// The SplitMix64 finaliser: a bijective mix of 64 bits.
 inline uint64_t mix64(uint64_t z) {
@@ -25,4 +26,4 @@ struct Random {
   }
 };
 
-}  // namespace rad::pathtrace
+}  // namespace rad
