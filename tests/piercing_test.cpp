@@ -35,8 +35,8 @@ constexpr double kNearLineRms = 0.02;
 constexpr double kThinPenumbraWorst = 0.15;
 /// Round a fixture hanging 9 mm under the ceiling, 1 to 20 cm from its outline, and on the floor
 /// 1 to 20 cm beside a sofa standing 6 mm above it (tests/data/piercing/narrow_gap.json): RMS and
-/// worst point. Measured: ceiling 4.3 % RMS, worst −9.5 % (before the gaps' mouths were
-/// refined: 14.8 %, −35 %); floor beside the sofa 4.9 %, worst −14 % at 1 cm (before its
+/// worst point. Measured: ceiling 4.4 % RMS, worst −10.2 % (before the gaps' mouths were
+/// refined: 14.8 %, −35 %); floor beside the sofa 4.2 %, worst −14 % at 1 cm (before its
 /// vertices gathered through their own hemicubes: 15.8 %, −32 %). Under the sofa, 1 to 20 cm
 /// inside its edge, the light falls off within a centimetre or two and is shown 2 to 100×
 /// too bright: a known limit (the elements there are no smaller than the smallest element,
