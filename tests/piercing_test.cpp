@@ -1,6 +1,6 @@
 // Surfaces that pass through others (issue 30): a tread through a wall, a cornice pushed into
 // the ceiling and the wall, a frame through a painting (tests/data/piercing/, rooms of 4 × 3 × 4
-// m lit by a ceiling lamp). Each surface is cut along the line where another passes through it,
+// m lit by a ceiling lamp); and beside them, narrow gaps and a sphere resting on a floor. Each surface is cut along the line where another passes through it,
 // and the two sides of that line get vertices of their own (a seam): the part of the tread
 // beyond the wall shows no light, the part in the room shows its own. Checked at defaults
 // against path-traced references (`radiosity reference`, stored beside the scenes) at points
@@ -43,6 +43,15 @@ constexpr double kThinPenumbraWorst = 0.15;
 /// 3.3 cm, and the sofa's underside is not refined), not tested.
 constexpr double kGapRms = 0.07;
 constexpr double kGapWorst = 0.2;
+/// The floor in the shadow of a sphere resting on it, lit by a panel on a wall, 0.4 to 1.9 m
+/// behind it (tests/data/piercing/sphere.json): RMS and worst point, the issue's targets.
+/// Measured 1.26 % and −4.8 %. Known limit, not tested: the floor within 10 cm of the point the
+/// sphere rests on (a wedge of a gap, 0.7 mm high 2 cm out, 17 mm at 10 cm) is shown 3.6×
+/// too bright in RMS, 12× at worst 2 cm out (9.5× and 27× before refined vertices beside a
+/// surface gathered for themselves): the light there falls off over a centimetre or two,
+/// finer than the elements.
+constexpr double kCurvedShadowRms = 0.02;
+constexpr double kCurvedShadowWorst = 0.1;
 /// A vertex on a seam shows at least this share of the median of its neighbours on its side.
 constexpr double kSeamVertexShare = 0.5;
 
@@ -149,6 +158,15 @@ TEST(PiercingTest, NarrowGapsAtDefaults) {
     EXPECT_LE(error.rms, kGapRms) << tag;
     EXPECT_LE(std::abs(error.worst), kGapWorst) << tag;
   }
+}
+
+/// A curved occluder's shadow: a sphere on the floor (kCurvedShadowRms, kCurvedShadowWorst).
+TEST(PiercingTest, SphereOnAFloorCastsItsShadowAtDefaults) {
+  const auto s = test::solveLikeCli(kPiercing + "sphere.json");
+  const auto shadow = test::trueErrorOf(*s, kPiercing + "sphere_reference.csv", "shadow");
+  EXPECT_GE(shadow.used, 80);
+  EXPECT_LE(shadow.rms, kCurvedShadowRms);
+  EXPECT_LE(std::abs(shadow.worst), kCurvedShadowWorst);
 }
 
 /// Faces lying on faces (tests/data/piercing/faces_on_faces.json: a 2 × 2 m rug on a floor
