@@ -125,7 +125,7 @@ void lightVertices(MeshedScene& s, const MeshingOptions& options) {
   if (s.settings.finalGather) estimate = estimateGather(s.mesh, s.scene.diagonal(), gatherOptions(s.settings, s.started));
   std::shared_ptr<GatherAhead> ahead = startGatherAhead(s, estimate, unrefined, options);
   if (rays) lightAndRefine(s, std::move(unrefined));
-  if (ownHemicubes(s) > 0) estimate = estimate.forVertices(estimate.vertices + double(ownHemicubes(s)));
+  if (const long own = ownHemicubes(s); own > 0) estimate = estimate.forVertices(estimate.vertices + double(own));
   s.gather = planGather(s.settings, estimate, s.mesh.patches.size(), timeLeft(s), std::move(ahead));
   if (!s.gather.leftOut.empty()) s.mesh.warnings.push_back(s.gather.leftOut);
 }
