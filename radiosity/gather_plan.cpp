@@ -34,6 +34,8 @@ std::string gatherLeftOut(const GatherEstimate& estimate, int workers, double ti
 GatherOptions gatherOptions(const Settings& settings, std::chrono::steady_clock::time_point started) {
   GatherOptions options;
   options.resolution = settings.gatherResolution;
+  options.accuracy = settings.gatherAccuracy;
+  options.elementEdge = settings.maxElementEdge;
   options.seed = settings.seed;
   if (settings.timeLimit > 0)
     options.deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(

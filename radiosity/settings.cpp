@@ -65,6 +65,7 @@ void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& fl
   static_cast<Shooting&>(s) = resolveShooting(false, file, flags);
   if (s.finalGather) s.gatherStart = resolveShooting(true, file, flags);
   s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution, kDefaultGatherResolution);
+  s.gatherAccuracy = pick(flags.gatherAccuracy, file.gatherAccuracy, kDefaultGatherAccuracy);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);

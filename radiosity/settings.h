@@ -94,6 +94,8 @@ struct Settings : Shooting {
   /// vertex system iterated to convergence (radiosity/gather/final_gather.h).
   bool finalGather = true;
   int gatherResolution = kDefaultGatherResolution;
+  /// Which vertices of the mesh before refinement gather (Ward's accuracy, GatherCache); 0: every one.
+  double gatherAccuracy = kDefaultGatherAccuracy;
   /// With the final gather asked for: the progressive solve's shooting as its start (cheaper
   /// defaults, the values the user gave kept).
   std::optional<Shooting> gatherStart;

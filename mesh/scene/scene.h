@@ -88,7 +88,7 @@ struct Fog {
 /// take defaults relative to the scene size (see resolveSettings).
 struct SolverBlock {
   std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
-  std::optional<double> factorCacheMb, proximitySamples;
+  std::optional<double> factorCacheMb, proximitySamples, gatherAccuracy;
   std::optional<int> hemicubeResolution, emitterHemicubeResolution, emitterSamples, shooterSamples;
   std::optional<int> gatherResolution;
   std::optional<long> maxShots;

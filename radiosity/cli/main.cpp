@@ -94,6 +94,10 @@ void addHemicubeFlags(CLI::App& app, SolverBlock& flags) {
   addResolution(app, "--gather-hemicube", flags.gatherResolution,
                 "Hemicube resolution of the final gather at the vertices, even "
                 "(solver.gather_resolution; default 32)");
+  addInRange(app, "--gather-accuracy", flags.gatherAccuracy, 0.0, 1.0,
+             "Which vertices of the final gather render hemicubes: a vertex within this share of a "
+             "gathering vertex's mean distance to what it sees interpolates it; 0: every vertex "
+             "(solver.gather_accuracy; default 0.2)");
   app.add_option("--seed", flags.seed, "Seed of the hemicube rotations (solver.seed; default 1)");
 }
 

@@ -118,9 +118,9 @@ void printOutcome(const RadiositySolve& solve, const Solution& solution, const s
   if (solution.gathered) {
     const GatherStats& g = solution.gather;
     std::fprintf(stderr, "radiosity: progressive start %ld shots in %.2f s (unshot %.2e, %s); final gather at %d "
-                         "vertices (%d added by refinement): hemicubes %.2f s%s, %d iterations (residual %.1e) in %.2f s; wrote %s\n",
+                         "vertices (%d added by refinement, %d where gathering vertices near them differed; %d others took their light): hemicubes %.2f s%s, %d iterations (residual %.1e) in %.2f s; wrote %s\n",
                  solver.shots(), solver.seconds(), solver.unshotFraction(), stopName(solver.stopReason()), g.points,
-                 g.ownHemicubes, g.hemicubeSeconds, g.renderedAhead ? " (beside the rays and shots)" : "", g.iterations, g.residual,
+                 g.ownHemicubes, g.doubted, g.interpolated, g.hemicubeSeconds, g.renderedAhead ? " (beside the rays and shots)" : "", g.iterations, g.residual,
                  g.solveSeconds, output.c_str());
     return;
   }

@@ -29,6 +29,7 @@ void addRefinementSettings(Json& s, const Settings& settings) {
   s["vertex_direct"] = settings.vertexDirect;
   s["final_gather"] = settings.finalGather;
   s["gather_resolution"] = settings.gatherResolution;
+  s["gather_accuracy"] = settings.gatherAccuracy;
   s["max_elements"] = settings.maxElements;
 }
 
@@ -174,7 +175,8 @@ Json gatherBlock(const Solution& solution) {
   const GatherStats& g = solution.gather;
   if (g.timedOut) return {{"timed_out", true}, {"hemicube_seconds", g.hemicubeSeconds}};
   if (!solution.gathered) return Json();
-  return {{"points", g.points},           {"own_hemicubes", g.ownHemicubes}, {"factors", g.factors},
+  return {{"points", g.points},           {"own_hemicubes", g.ownHemicubes}, {"doubted", g.doubted},
+          {"interpolated", g.interpolated}, {"factors", g.factors},
           {"iterated", g.iterated},       {"iterations", g.iterations},
           {"residual", g.residual},       {"hemicube_seconds", g.hemicubeSeconds},
           {"rendered_ahead", g.renderedAhead}, {"solve_seconds", g.solveSeconds}};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 
@@ -168,6 +169,17 @@ const DeltaFormFactors& DeltaFormFactors::forResolution(int R) {
   d->exactSum = sum;
   for (double& f : d->top) f /= sum;
   for (double& f : d->side) f /= sum;
+  // Pixel centres' directions: the top's (x, y, 1), a side's (1, x, z) with z up from the base.
+  const double h = 2.0 / R;
+  d->topPerLength.resize(d->top.size());
+  d->sidePerLength.resize(d->side.size());
+  for (int j = 0; j < R; ++j)
+    for (int i = 0; i < R; ++i) {
+      const double x = -1 + (i + 0.5) * h, y = -1 + (j + 0.5) * h;
+      const size_t k = size_t(j) * size_t(R) + size_t(i);
+      d->topPerLength[k] = float(1 / std::sqrt(1 + x * x + y * y));
+      if (j < R / 2) d->sidePerLength[k] = float(1 / std::sqrt(1 + x * x + ((j + 0.5) * h) * ((j + 0.5) * h)));
+    }
   slot = std::move(d);
   return *slot;
 }
@@ -241,6 +253,19 @@ void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation
     accumulateLocated(out);
   else
     accumulate(out);
+  out.nearest = nearest();
+}
+
+double Hemicube::nearest() const {
+  // Reversed depth is near/w, w the distance along the face's axis: the nearest shows the
+  // largest depth over the direction's length. The sky's pixels keep depth 0.
+  float largest = 0;
+  for (size_t f = 0; f < 5; ++f) {
+    const raster::Target& face = *faces_[f];
+    const float* perLength = (f == 0 ? delta_.topPerLength : delta_.sidePerLength).data();
+    for (size_t k = 0; k < face.depth.size(); ++k) largest = std::max(largest, perLength[k] * face.depth[k]);
+  }
+  return largest > 0 ? near_ / double(largest) : std::numeric_limits<double>::infinity();
 }
 
 void Hemicube::prepare(const glm::dvec3& x, const glm::dvec3& n, double rotation,

@@ -61,6 +61,10 @@ struct FormFactors {
   std::vector<int> elements;
   std::vector<double> factors;
   double sky = 0, backFaces = 0;
+  /// The distance from the eye to the nearest surface (either side) a pixel centre shows, or
+  /// infinity: the light arriving from place to place changes over distances like this
+  /// (Tabellion & Lamorlette 2004 take it for Ward's harmonic mean distance).
+  double nearest = 0;
 
   double sum() const;
 };
@@ -71,6 +75,9 @@ struct FormFactors {
 struct DeltaFormFactors {
   int resolution = 0;
   std::vector<double> top, side;
+  /// One over the length of each pixel centre's direction at unit distance along its face's
+  /// axis: a pixel's 1/distance is this times 1/(distance along the axis).
+  std::vector<float> topPerLength, sidePerLength;
   double exactSum = 0;  ///< the sum of the exact pixel integrals before normalising (1 − ε)
 
   static const DeltaFormFactors& forResolution(int resolution);
@@ -189,6 +196,8 @@ class Hemicube {
   void drawBatches(bool forTests);
   /// Sums each face's delta form factors per item into `out` (elements ascending).
   void accumulate(FormFactors& out);
+  /// FormFactors::nearest of the faces as drawn.
+  double nearest() const;
   /// accumulate() drawing flat regions: each pixel's delta form factor to the element its
   /// centre's ray meets.
   void accumulateLocated(FormFactors& out);

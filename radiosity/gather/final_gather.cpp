@@ -49,6 +49,19 @@ void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, He
   cube.compute(offSurface(probe, sceneSize), probe.normal, hemicubeRotation(seed, kGatherStream + uint64_t(v), 0), out);
 }
 
+/// The chance that vertex v of `mesh`, whose hemicube showed its nearest surface `nearest` away, gathers
+/// (GatherCache): its share of the area over the area a gathering vertex there covers, about
+/// kGatherCoverShare of π·(accuracy·R)².
+double gatherShare(const PatchMesh& mesh, int v, double nearest, double sceneSize, const GatherOptions& options) {
+  const double accuracy = options.accuracy;
+  if (accuracy <= 0) return 1;
+  double area = 0;
+  for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(v))) area += mesh.area(f.idx()) / 3;
+  const double R = std::min(nearest, maxGatherReach(sceneSize, accuracy, kGatherFarthestShare * options.elementEdge));
+  const double covers = kGatherCoverShare * M_PI * (accuracy * R) * (accuracy * R);
+  return std::min(1.0, area / covers);
+}
+
 /// The vertices of `mesh` that gather, as the mesh the hemicubes draw: every one not black.
 std::vector<int> gatheringVertices(const PatchMesh& mesh) {
   const Field rho = vertexReflectance(mesh);
@@ -70,7 +83,9 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
   std::vector<FormFactors> scratch(static_cast<size_t>(workers));
   for (int w = 0; w < workers; ++w) cubes.push_back(std::make_unique<Hemicube>(regions, options.resolution, sceneSize));
   out.rows.resize(mesh.mesh.n_vertices());
-  if (y) out.once.assign(mesh.mesh.n_vertices(), glm::dvec3(0.0));
+  out.nearest.resize(mesh.mesh.n_vertices(), 0.0);
+  out.rendered.resize(mesh.mesh.n_vertices(), 0);
+  if (y && out.once.empty()) out.once.assign(mesh.mesh.n_vertices(), glm::dvec3(0.0));
   std::atomic<long> factors{out.factors};
   std::atomic<bool> late{false}, over{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
@@ -83,6 +98,8 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
     const int v = which[k];
     FormFactors& f = scratch[size_t(worker)];
     factorsAt(mesh, sceneSize, options.seed, v, *cubes[size_t(worker)], f);
+    out.nearest[size_t(v)] = f.nearest;
+    out.rendered[size_t(v)] = 1;
     GatherRow& row = out.rows[size_t(v)];
     row.elements = f.elements;
     row.factors.assign(f.factors.begin(), f.factors.end());
@@ -103,7 +120,13 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
 GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const GatherOptions& options, const Field* y,
                             const std::atomic<bool>* cancel) {
   GatherRows out;
-  renderRows(drawn, drawn, sceneSize, gatheringVertices(drawn), options, y, cancel, out);
+  out.cache = chooseGathering(drawn, gatheringVertices(drawn), options.accuracy, sceneSize,
+                              kGatherFarthestShare * options.elementEdge,
+                              [&](const std::vector<int>& which, std::vector<double>& nearest) {
+                                renderRows(drawn, drawn, sceneSize, which, options, y, cancel, out);
+                                for (int v : which) nearest[size_t(v)] = out.nearest[size_t(v)];
+                                return !out.timedOut && (out.kept || y);
+                              });
   return out;
 }
 
@@ -306,6 +329,52 @@ std::vector<glm::dvec3> elementMeans(const PatchMesh& mesh, const std::vector<gl
 
 namespace {
 
+/// The drawn mesh's rows: those the cache chose, and those rendered where its gathering
+/// vertices disagreed.
+struct DrawnRows {
+  const GatherRows& chosen;
+  const GatherRows& doubted;
+  const Field& y;
+
+  bool isDoubted(int d) const { return size_t(d) < doubted.rendered.size() && doubted.rendered[size_t(d)]; }
+  const GatherRow& row(int d) const { return isDoubted(d) ? doubted.rows[size_t(d)] : chosen.rows[size_t(d)]; }
+  /// Its row over y.
+  glm::dvec3 once(int d) const {
+    if (isDoubted(d)) return doubted.once[size_t(d)];
+    return chosen.once.empty() ? gatherRow(chosen.rows[size_t(d)], y) : chosen.once[size_t(d)];
+  }
+};
+
+/// The drawn mesh's vertices that the cache interpolates from gathering vertices whose light
+/// over y (the progressive start's) differs by more than `agreement` of their mean, or from
+/// a single one: their light may change between them faster than the cache assumed.
+std::vector<int> disagreeing(const GatherRows& rows, const Field& y, double agreement) {
+  const GatherCache& cache = rows.cache;
+  std::vector<int> out;
+  if (agreement <= 0) return out;
+  auto luminance = [&](int d) {
+    const glm::dvec3 h = rows.once.empty() ? gatherRow(rows.rows[size_t(d)], y) : rows.once[size_t(d)];
+    return h.x + h.y + h.z;
+  };
+  std::vector<double> gathered(cache.from.size(), -1.0);
+  for (size_t v = 0; v < cache.from.size(); ++v) {
+    const auto& from = cache.from[v];
+    if (from.empty() || (from.size() == 1 && from[0].first == int(v))) continue;  // not asked, or gathers
+    if (from.size() == 1) {
+      out.push_back(int(v));
+      continue;
+    }
+    double lo = HUGE_VAL, hi = 0, mean = 0;
+    for (const auto& [g, w] : from) {
+      double& h = gathered[size_t(g)];
+      if (h < 0) h = luminance(g);
+      lo = std::min(lo, h), hi = std::max(hi, h), mean += w * h;
+    }
+    if (hi - lo > agreement * mean) out.push_back(int(v));
+  }
+  return out;
+}
+
 /// The gathering vertices that are not the drawn mesh's: they render hemicubes of their own.
 std::vector<int> lonersOf(const GatherPoints& points) {
   std::vector<int> out;
@@ -324,15 +393,18 @@ GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const Gat
   Hemicube cube(regions, options.resolution, sceneSize);
   FormFactors f;
   const size_t probes = std::min(gathering.size(), size_t(kGatherWorkProbes));
+  double share = 0;  // of the probes, the share that would gather (GatherCache)
   for (size_t k = 0; k < probes; ++k) {
-    factorsAt(mesh, sceneSize, options.seed, gathering[(2 * k + 1) * gathering.size() / (2 * probes)], cube, f);
+    const int v = gathering[(2 * k + 1) * gathering.size() / (2 * probes)];
+    factorsAt(mesh, sceneSize, options.seed, v, cube, f);
+    share += gatherShare(mesh, v, f.nearest, sceneSize, options);
     out.drawn += double(cube.sorted());
     out.located += double(cube.counts().located);
     out.factors += double(f.elements.size());
   }
   out.culled = cube.culling() == HemicubeCulling::Hidden;
-  out.vertices = double(gathering.size());
-  const double perProbe = double(gathering.size()) / double(probes);
+  out.vertices = double(gathering.size()) * share / double(probes);
+  const double perProbe = out.vertices / double(probes);
   out.drawn *= perProbe;
   out.located *= perProbe;
   out.factors *= perProbe;
@@ -345,7 +417,6 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
                                     const std::vector<char>* ownHemicube) {
   GatherStats stats;
   const Field rho = vertexReflectance(mesh), emission = vertexEmission(mesh);
-  GatherPoints points = gatherPoints(mesh, base, rho, ownHemicube);
   const PatchMesh& drawn = base ? *base : mesh;
   const int workers = workerCount(options.workers);
   const Interpolation W = interpolation(mesh, base);
@@ -356,26 +427,49 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   GatherRows now;
   if (!rendered || !rendered->kept) now = renderGatherRows(drawn, sceneSize, options, &y);
   const GatherRows& ofDrawn = rendered && rendered->kept ? *rendered : now;
+  // The drawn mesh's vertices whose light the cache would interpolate from gathering vertices
+  // that disagree over y gather too (rows of their own, `doubted`).
+  GatherRows doubted;
+  doubted.factors = ofDrawn.factors;  // counted against the same budget
+  DrawnInterpolation interpolated;
+  if (ofDrawn.cache.complete) {
+    interpolated = ofDrawn.cache.from;
+    const std::vector<int> doubtful = disagreeing(ofDrawn, y, options.agreement);
+    if (!doubtful.empty()) renderRows(drawn, drawn, sceneSize, doubtful, options, &y, nullptr, doubted);
+    if (doubted.timedOut) {  // past the deadline: they interpolate, as they would without the doubt
+      doubted = GatherRows{};
+      doubted.factors = ofDrawn.factors;
+    } else {
+      for (int v : doubtful) interpolated[size_t(v)] = {{v, 1.0}};
+    }
+    for (size_t v = 0; v < interpolated.size(); ++v)
+      if (!interpolated[v].empty() && !(interpolated[v].size() == 1 && interpolated[v][0].first == int(v)))
+        ++stats.interpolated;
+  }
+  const DrawnRows drawnRows{ofDrawn, doubted, y};
+  const DrawnInterpolation* drawnFrom = ofDrawn.cache.complete ? &interpolated : nullptr;
+  GatherPoints points = gatherPoints(mesh, base, rho, ownHemicube, drawnFrom);
   GatherRows own;
-  own.factors = ofDrawn.factors;  // counted against the same budget
+  own.factors = doubted.factors;  // counted against the same budget
   std::vector<int> loners = lonersOf(points);
   if (!loners.empty()) renderRows(mesh, drawn, sceneSize, loners, options, &y, nullptr, own);
   // Past the deadline with the drawn mesh's rows all there, the vertices refinement added
   // interpolate their base corners, as they would without hemicubes of their own.
   if (own.timedOut && !ofDrawn.timedOut && ownHemicube) {
-    GatherPoints interpolating = gatherPoints(mesh, base, rho);
+    GatherPoints interpolating = gatherPoints(mesh, base, rho, nullptr, drawnFrom);
     if (lonersOf(interpolating).empty()) {
       points = std::move(interpolating);
       loners.clear();
       own = GatherRows{};
-      own.factors = ofDrawn.factors;
+      own.factors = doubted.factors;
     }
   }
   stats.points = points.count();
   stats.ownHemicubes = int(loners.size());
   stats.factors = own.factors;
-  stats.timedOut = ofDrawn.timedOut || own.timedOut;
-  stats.hemicubeSeconds = ofDrawn.seconds + own.seconds;
+  stats.doubted = int(std::count(doubted.rendered.begin(), doubted.rendered.end(), 1));
+  stats.timedOut = ofDrawn.timedOut || doubted.timedOut || own.timedOut;
+  stats.hemicubeSeconds = ofDrawn.seconds + doubted.seconds + own.seconds;
   stats.renderedAhead = rendered && rendered->kept;
   if (stats.timedOut) {
     if (statsOut) *statsOut = stats;
@@ -383,11 +477,11 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   }
   const auto clock = Clock::now();
   Rows rows;
-  rows.kept = ofDrawn.kept && own.kept;
+  rows.kept = ofDrawn.kept && doubted.kept && own.kept;
   if (rows.kept) {
     rows.of.assign(points.at.size(), nullptr);
     for (size_t v = 0; v < points.at.size(); ++v)
-      if (points.at[v]) rows.of[v] = points.drawn[v] >= 0 ? &ofDrawn.rows[size_t(points.drawn[v])] : &own.rows[v];
+      if (points.at[v]) rows.of[v] = points.drawn[v] >= 0 ? &drawnRows.row(points.drawn[v]) : &own.rows[v];
   }
   // The single gather over y at each gathering vertex: rows rendered ahead (kept, or they
   // would have been rendered now) have not met y yet, even if the loners' went over the budget.
@@ -395,10 +489,7 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   parallelFor(once.size(), workers, [&](size_t v, int) {
     if (!points.at[v]) return;
     const int d = points.drawn[v];
-    if (d < 0)
-      once[v] = own.once[v];
-    else
-      once[v] = ofDrawn.once.empty() ? gatherRow(ofDrawn.rows[size_t(d)], y) : ofDrawn.once[size_t(d)];
+    once[v] = d < 0 ? own.once[v] : drawnRows.once(d);
   }, 256);
   Field x = plus(directOrZero(direct, rho.size()), rho, points.spread(once));
   if (rows.kept) {

@@ -31,6 +31,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/patch_mesh.h"
+#include "radiosity/gather/gather_cache.h"
 
 namespace rad {
 
@@ -63,6 +64,15 @@ constexpr int kGatherWorkProbes = 16;
 struct GatherOptions {
   int resolution = kDefaultGatherResolution;
   unsigned seed = 1;
+  /// Ward's accuracy for which vertices of the drawn mesh gather (GatherCache); 0: every one.
+  double accuracy = kDefaultGatherAccuracy;
+  /// A vertex the cache would interpolate gathers itself too where the gathering vertices it
+  /// takes differ by more than this share of their mean over the progressive start's light,
+  /// or it takes one alone; 0: never.
+  double agreement = kDefaultGatherAgreement;
+  /// The scene's element edge (0: unknown): where the mesh is this fine, every vertex gathers
+  /// (kGatherFarthestShare).
+  double elementEdge = 0;
   int workers = 0;                ///< hemicubes rendering at once (0: one per hardware thread)
   double tolerance = 1e-5;        ///< relative residual of the vertex system
   int maxIterations = 200;
@@ -78,6 +88,10 @@ struct GatherOptions {
 struct GatherStats {
   int points = 0;        ///< vertices gathered at
   int ownHemicubes = 0;  ///< of them, vertices refinement added (beside another surface)
+  int doubted = 0;       ///< of them, vertices the cache would interpolate from disagreeing ones
+  /// Vertices of the mesh before refinement that take their light from the cache's gathering
+  /// ones instead of gathering (GatherCache).
+  int interpolated = 0;
   long factors = 0;      ///< non-zero form factors over all of them
   bool iterated = false; ///< the vertex system solved (false: gathered once, over memory)
   int iterations = 0;    ///< BiCGSTAB iterations
@@ -99,7 +113,10 @@ struct GatherRow {
 /// depend on that mesh alone, not on the light, so they can render while the rays are cast and
 /// the start is shot (GatherAhead).
 struct GatherRows {
-  std::vector<GatherRow> rows;   ///< per vertex of the drawn mesh (empty: black, or let go)
+  std::vector<GatherRow> rows;   ///< per vertex of the drawn mesh (empty: black, interpolated, or let go)
+  std::vector<double> nearest;   ///< per vertex, FormFactors::nearest where rendered
+  std::vector<char> rendered;    ///< per vertex, whether its hemicube was rendered
+  GatherCache cache;             ///< which vertices of the drawn mesh gather, and how the others interpolate
   std::vector<glm::dvec3> once;  ///< per vertex, its row over `y` (renderGatherRows), if given
   long factors = 0;              ///< non-zero factors over all rows
   bool kept = true;              ///< false: the rows outgrew options.memoryBytes and were let go

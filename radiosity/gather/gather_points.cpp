@@ -103,18 +103,46 @@ std::vector<char> nearSurfaces(const PatchMesh& mesh, const PatchMesh& base, con
 }
 
 GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Field& rho,
-                          const std::vector<char>* ownHemicube) {
+                          const std::vector<char>* ownHemicube, const DrawnInterpolation* drawn) {
   const size_t n = mesh.mesh.n_vertices();
   GatherPoints g{std::vector<bool>(n, false), std::vector<std::vector<std::pair<int, double>>>(n),
                  std::vector<int>(n, -1)};
+  // Whether drawn vertex d gathers itself (else it interpolates drawn's others).
+  auto drawnGathers = [&](size_t d) {
+    return !drawn || drawn->empty() || ((*drawn)[d].size() == 1 && (*drawn)[d][0].first == int(d));
+  };
   if (!base) {
     for (size_t v = 0; v < n; ++v)
-      if (rho[v] != glm::dvec3(0.0)) gatherAt(g, int(v), int(v));
+      if (rho[v] != glm::dvec3(0.0)) {
+        if (drawnGathers(v))
+          gatherAt(g, int(v), int(v));
+        else
+          g.from[v] = (*drawn)[v];
+      }
     return g;
   }
   const BaseCorners at = baseCorners(mesh, *base);
   for (size_t b = 0; b < at.size(); ++b)
-    if (at[b] >= 0 && rho[size_t(at[b])] != glm::dvec3(0.0)) gatherAt(g, at[b], int(b));
+    if (at[b] >= 0 && rho[size_t(at[b])] != glm::dvec3(0.0) && drawnGathers(b)) gatherAt(g, at[b], int(b));
+  for (size_t b = 0; b < at.size(); ++b) {
+    if (at[b] < 0 || rho[size_t(at[b])] == glm::dvec3(0.0) || drawnGathers(b)) continue;
+    auto& from = g.from[size_t(at[b])];
+    for (const auto& [d, w] : (*drawn)[b])
+      if (at[size_t(d)] >= 0 && g.at[size_t(at[size_t(d)])]) from.emplace_back(at[size_t(d)], w);
+    if (from.size() != (*drawn)[b].size()) gatherAt(g, at[b], -1);  // one it takes is lost: its own
+  }
+  // A vertex inside a base element: its corners' light, each as that corner has it.
+  auto expand = [&](const std::vector<std::pair<int, double>>& corners) {
+    std::vector<std::pair<int, double>> out;
+    for (const auto& [c, w] : corners) {
+      if (g.at[size_t(c)]) {
+        out.emplace_back(c, w);
+        continue;
+      }
+      for (const auto& [p, wp] : g.from[size_t(c)]) out.emplace_back(p, w * wp);
+    }
+    return out;
+  };
   for (auto f : mesh.mesh.faces())
     for (auto v : mesh.mesh.fv_range(f)) {
       if (!g.from[size_t(v.idx())].empty() || rho[size_t(v.idx())] == glm::dvec3(0.0)) continue;
@@ -122,7 +150,7 @@ GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const Fi
         gatherAt(g, v.idx(), -1);
         continue;
       }
-      g.from[size_t(v.idx())] = interpolated(mesh, *base, at, f.idx(), v);
+      g.from[size_t(v.idx())] = expand(interpolated(mesh, *base, at, f.idx(), v));
       if (g.from[size_t(v.idx())].empty()) gatherAt(g, v.idx(), -1);  // its base element's corner is lost
     }
   return g;

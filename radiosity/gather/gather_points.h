@@ -32,11 +32,17 @@ struct GatherPoints {
   int count() const;
 };
 
+/// Per vertex of the drawn mesh, the gathering vertices (of the drawn mesh) its gathered light
+/// is interpolated from (GatherCache::from).
+using DrawnInterpolation = std::vector<std::vector<std::pair<int, double>>>;
+
 /// The gathering vertices of `mesh`, whose reflectance per vertex is `rho` (black vertices
 /// gather nothing): with `base` (the mesh before refinement) its corners and the vertices
-/// `ownHemicube` marks (if given), else every vertex.
+/// `ownHemicube` marks (if given), else every vertex. With `drawn` (per vertex of the base, or
+/// of the mesh without one), the vertices it does not have gather take its interpolation
+/// instead, and so do the vertices refinement added inside their elements.
 GatherPoints gatherPoints(const PatchMesh& mesh, const PatchMesh* base, const std::vector<glm::dvec3>& rho,
-                          const std::vector<char>* ownHemicube = nullptr);
+                          const std::vector<char>* ownHemicube = nullptr, const DrawnInterpolation* drawn = nullptr);
 
 /// Per vertex of `mesh`, refined from `base`: whether it gathers through its own hemicube,
 /// another surface lying nearer to it than its base element's longest edge (any of the short

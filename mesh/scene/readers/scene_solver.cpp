@@ -54,6 +54,7 @@ void readSolverNumbers(const Node& n, SolverBlock& b) {
   optionalNumber(n, "contrast", 1e-6, 1, "[1e-6, 1]", b.contrast);
   optionalNumber(n, "proximity_samples", 0, 65536, "[0, 65536]", b.proximitySamples);
   optionalNumber(n, "factor_cache_mb", 0, 1e9, "[0, 1e9]", b.factorCacheMb);
+  optionalNumber(n, "gather_accuracy", 0, 1, "[0, 1]", b.gatherAccuracy);
 }
 
 /// Counts, resolutions and the seed, in the order they are checked.
@@ -76,7 +77,7 @@ void readSolver(const Node& n, SolverBlock& b) {
                   "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                   "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts", "fix_facing",
                   "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements",
-                  "final_gather", "gather_resolution", "cluster_shooters",
+                  "final_gather", "gather_resolution", "gather_accuracy", "cluster_shooters",
                   "resolution_follows_power"});
   readSolverNumbers(n, b);
   readSolverCounts(n, b);
