@@ -8,6 +8,20 @@ namespace rad {
 
 /// Default element edge: the scene diagonal divided by this.
 constexpr double kDefaultElementsPerDiagonal = 25;
+/// A draft's elements are this many times as long as the scene's (its own or the default), a
+/// final solve's this many times shorter, unless the flag sets the edge (docs/method/true-error.md,
+/// "Quality").
+constexpr double kQualityElementRatio = 1.6;
+
+/// The quality the flags or else the scene ask for (default: Quality::Default).
+inline Quality qualityOf(const Scene& scene, const SolverBlock& flags) {
+  return flags.quality.value_or(scene.solver.quality.value_or(Quality::Default));
+}
+
+/// What a quality scales the scene's element edge by.
+inline double elementScale(Quality q) {
+  return q == Quality::Draft ? kQualityElementRatio : q == Quality::Final ? 1 / kQualityElementRatio : 1.0;
+}
 /// Default patch edge: this many element edges.
 constexpr double kDefaultPatchToElement = 3;
 

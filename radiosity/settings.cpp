@@ -31,6 +31,7 @@ T pick(const std::optional<T>& flag, const std::optional<T>& file, U fallback) {
 void resolveMeshing(Settings& s, const Scene& scene, const SolverBlock& flags) {
   const SolverBlock& file = scene.solver;
   const MeshSettings mesh = resolveMeshSettings(scene, flags);
+  s.quality = qualityOf(scene, flags);
   s.maxElementEdge = mesh.maxElementEdge;
   s.maxPatchEdge = mesh.maxPatchEdge;
   s.cutContacts = mesh.cutContacts;
@@ -64,8 +65,11 @@ Shooting resolveShooting(bool gatherStart, const SolverBlock& file, const Solver
 void resolveShooting(Settings& s, const SolverBlock& file, const SolverBlock& flags) {
   static_cast<Shooting&>(s) = resolveShooting(false, file, flags);
   if (s.finalGather) s.gatherStart = resolveShooting(true, file, flags);
-  s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution, kDefaultGatherResolution);
-  s.gatherAccuracy = pick(flags.gatherAccuracy, file.gatherAccuracy, kDefaultGatherAccuracy);
+  const bool draft = s.quality == Quality::Draft, final = s.quality == Quality::Final;
+  s.gatherResolution = pick(flags.gatherResolution, file.gatherResolution,
+                            draft ? kDraftGatherResolution : kDefaultGatherResolution);
+  s.gatherAccuracy = pick(flags.gatherAccuracy, file.gatherAccuracy,
+                          draft ? kDraftGatherAccuracy : final ? 0.0 : kDefaultGatherAccuracy);
   s.seed = pick(flags.seed, file.seed, 1u);
   s.overshoot = pick(flags.overshoot, file.overshoot, kDefaultOvershoot);
   s.shooterSamples = pick(flags.shooterSamples, file.shooterSamples, kDefaultShooterSamples);

@@ -43,6 +43,10 @@ constexpr double kDefaultMinElementRatio = 4;
 constexpr double kGatherMinElementRatio = 8;
 /// Refinement threshold in display units (sRGB value in [0, 1]): about five of 255 levels.
 constexpr double kDefaultContrast = 0.02;
+/// A draft's gather: coarser hemicubes, and more vertices of a finely tessellated model taking
+/// the light of gathering ones near them (a final solve gathers at every vertex).
+constexpr int kDraftGatherResolution = 16;
+constexpr double kDraftGatherAccuracy = 0.4;
 /// Cap on elements: about 14 GiB at the ~7 KiB per element a solve takes, within 24 GiB.
 constexpr long kDefaultMaxElements = 2'000'000;
 
@@ -94,6 +98,7 @@ struct Settings : Shooting {
   /// vertex system iterated to convergence (radiosity/gather/final_gather.h).
   bool finalGather = true;
   int gatherResolution = kDefaultGatherResolution;
+  Quality quality = Quality::Default;  ///< what the defaults of the settings below were taken for
   /// Which vertices of the mesh before refinement gather (Ward's accuracy, GatherCache); 0: every one.
   double gatherAccuracy = kDefaultGatherAccuracy;
   /// With the final gather asked for: the progressive solve's shooting as its start (cheaper

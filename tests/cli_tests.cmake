@@ -47,6 +47,7 @@ set(bad_cases
   bad_preset           "materials.knob.preset: expected one of black_plastic, brass, .*found the string \"platinum\""
   bad_contrast         "solver.contrast: expected a number in .1e-6, 1., found the number 5"
   bad_adaptive         "solver.adaptive: expected true or false, found the string \"yes\""
+  bad_quality          "solver.quality: expected \"draft\", \"default\" or \"final\", found the string \"best\""
   obj_index_past_end   "surfaces.2..mesh: .*obj_index_past_end.obj: line 4: expected vertex indices from 1 to 3 .or -1 to -3, counting back., found '9'"
   obj_index_before_start "surfaces.2..mesh: .*obj_index_before_start.obj: line 4: expected vertex indices from 1 to 3 .*found '-9'"
   obj_index_int_max    "surfaces.2..mesh: .*obj_index_int_max.obj: line 4: expected vertex indices from 1 to 3 .*found '2147483647'"
@@ -83,6 +84,8 @@ cli_test(usage.missing_value 2 "max-element-edge" OUT/usage2.ply
          mesh ${DATA}/good_small.json -o OUT/usage2.ply --max-element-edge)
 cli_test(usage.negative_edge 2 "max-element-edge" OUT/usage3.ply
          mesh ${DATA}/good_small.json -o OUT/usage3.ply --max-element-edge -1)
+cli_test(usage.unknown_quality 2 "--quality: best not in .draft,default,final." OUT/usage4.ply
+         mesh ${DATA}/good_small.json -o OUT/usage4.ply --quality best)
 cli_test(usage.no_command 2 "" "")
 
 # formfactors: JSON on stdout; bad surface names are bad input, missing choices usage errors.

@@ -83,7 +83,9 @@ TEST(GatherCacheTest, EveryVertexGathersOrTakesGatheringOnesWithinItsReach) {
   ASSERT_TRUE(cache.complete);
   EXPECT_EQ(int(rendered.size()), cache.gathering);             // each rendered once
   EXPECT_EQ(std::set<int>(rendered.begin(), rendered.end()).size(), rendered.size());
-  EXPECT_LT(cache.gathering, int(m.candidates.size()) / 2);     // most take their light
+  // Many take their light (measured 5 781 of 11 360 gather: the outlines of the table's thin
+  // parts are most of their vertices, and the room's are as far apart as its elements).
+  EXPECT_LT(cache.gathering, int(0.6 * double(m.candidates.size())));
   EXPECT_GT(cache.levels, 1);
   for (int v : m.candidates) {
     const auto& from = cache.from[size_t(v)];
@@ -93,6 +95,7 @@ TEST(GatherCacheTest, EveryVertexGathersOrTakesGatheringOnesWithinItsReach) {
       continue;
     }
     EXPECT_FALSE(base.seam(TriMesh::VertexHandle(v))) << v;   // the two sides of a contact line gather
+    EXPECT_FALSE(base.mesh.is_boundary(TriMesh::VertexHandle(v))) << v;  // and a surface's outline
     double sum = 0;
     const glm::dvec3 p = PatchMesh::toGlm(base.mesh.point(TriMesh::VertexHandle(v)));
     for (const auto& [g, w] : from) {

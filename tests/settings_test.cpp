@@ -65,5 +65,38 @@ TEST(SettingsTest, ResolutionFollowsPowerFromFileAndFlag) {
   EXPECT_TRUE(resolveSettings(scene, flags).resolutionFollowsPower);  // the flag wins over the file
 }
 
+/// A quality moves the defaults: a draft's elements 1.6× as long as the scene asks (its own
+/// edge too), a coarser gather taking more neighbours' light; a final solve's 1.6× shorter,
+/// every vertex gathering. The flag over the file; flags of the settings it moves win over it.
+TEST(SettingsTest, QualityMovesTheDefaults) {
+  Scene scene = loadScene(kScenes + "cube.json");
+  scene.solver = SolverBlock{};
+  const Settings normal = resolveSettings(scene, {});
+  EXPECT_EQ(normal.quality, Quality::Default);
+  SolverBlock draft;
+  draft.quality = Quality::Draft;
+  Settings s = resolveSettings(scene, draft);
+  EXPECT_EQ(s.quality, Quality::Draft);
+  EXPECT_DOUBLE_EQ(s.maxElementEdge, normal.maxElementEdge * kQualityElementRatio);
+  EXPECT_DOUBLE_EQ(s.maxPatchEdge, s.maxElementEdge * kDefaultPatchToElement);
+  EXPECT_EQ(s.gatherResolution, kDraftGatherResolution);
+  EXPECT_EQ(s.gatherAccuracy, kDraftGatherAccuracy);
+  scene.solver.quality = Quality::Final;
+  scene.solver.maxElementEdge = 0.1;
+  s = resolveSettings(scene, {});
+  EXPECT_DOUBLE_EQ(s.maxElementEdge, 0.1 / kQualityElementRatio);  // the scene's own edge, shorter
+  EXPECT_EQ(s.gatherAccuracy, 0.0);
+  EXPECT_EQ(s.gatherResolution, kDefaultGatherResolution);
+  s = resolveSettings(scene, draft);  // the flag over the file
+  EXPECT_DOUBLE_EQ(s.maxElementEdge, 0.1 * kQualityElementRatio);
+  draft.maxElementEdge = 0.05;
+  draft.gatherResolution = 64;
+  draft.gatherAccuracy = 0.1;
+  s = resolveSettings(scene, draft);  // the flags of what it moves win
+  EXPECT_EQ(s.maxElementEdge, 0.05);
+  EXPECT_EQ(s.gatherResolution, 64);
+  EXPECT_EQ(s.gatherAccuracy, 0.1);
+}
+
 }  // namespace
 }  // namespace rad

@@ -84,9 +84,14 @@ struct Fog {
   double start = 0.0, end = 1.0, density = 1.0;
 };
 
+/// What a solve spends for accuracy, as the defaults of the settings it moves (mesh/mesh_settings.h,
+/// radiosity/settings.h): a quick look, the default balance, or the most accurate answer.
+enum class Quality { Draft, Default, Final };
+
 /// The scene's `solver` block: defaults that command-line flags override. Unset values
 /// take defaults relative to the scene size (see resolveSettings).
 struct SolverBlock {
+  std::optional<Quality> quality;
   std::optional<double> maxElementEdge, maxPatchEdge, tolerance, timeLimit, overshoot, exposure;
   std::optional<double> factorCacheMb, proximitySamples, gatherAccuracy;
   std::optional<int> hemicubeResolution, emitterHemicubeResolution, emitterSamples, shooterSamples;

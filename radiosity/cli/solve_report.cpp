@@ -30,6 +30,7 @@ void addRefinementSettings(Json& s, const Settings& settings) {
   s["final_gather"] = settings.finalGather;
   s["gather_resolution"] = settings.gatherResolution;
   s["gather_accuracy"] = settings.gatherAccuracy;
+  s["quality"] = settings.quality == Quality::Draft ? "draft" : settings.quality == Quality::Final ? "final" : "default";
   s["max_elements"] = settings.maxElements;
 }
 

@@ -16,9 +16,11 @@
 // light at the vertex (by rays, when given; then an emitter's emission is not gathered again)
 // or else ρ·F·E. Every row of a closed scene's F sums to 1, so a furnace comes out exact. The
 // system is solved by BiCGSTAB from the progressive solution. The vertices of the mesh as built
-// before refinement render hemicubes, and those refinement added where another surface is near;
-// the others interpolate what those gather (radiosity/gather/gather_points.h), while their
-// direct light is their own rays'.
+// before refinement render hemicubes, but where that mesh is much finer than the scene's
+// elements (a model's own faces) those near gathering ones take their light instead
+// (radiosity/gather/gather_cache.h); so do the vertices refinement added, unless another
+// surface is near (radiosity/gather/gather_points.h); every vertex's direct light is its own
+// rays'.
 #include <atomic>
 #include <chrono>
 #include <cstddef>

@@ -1,6 +1,7 @@
 #include "radiosity/gather/gather_cache.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -52,29 +53,44 @@ Cell cellOf(const glm::dvec3& p, double size, int surface) {
   return {int64_t(std::floor(p.x / size)), int64_t(std::floor(p.y / size)), int64_t(std::floor(p.z / size)), surface};
 }
 
-/// The gathering vertices found so far, each listed in every cell of a fixed grid that its
-/// reach (accuracy·R) overlaps.
+/// Grids of cells halving in size: a reach goes to the finest whose cells are as wide as it.
+constexpr int kReachGrids = 48;
+
+/// The gathering vertices found so far, each listed in the cells its reach (accuracy·R)
+/// overlaps on the grid as fine as that reach (at most eight): a dense model's gathering
+/// vertices, whose reaches are small, share no list with the room's.
 class Gathered {
  public:
   Gathered(double cell, double accuracy) : cell_(cell), accuracy_(accuracy) {}
 
   void add(int v, const Site& s, double R) {
     const double r = accuracy_ * R;
-    const Cell lo = cellOf(s.p - glm::dvec3(r), cell_, s.surface), hi = cellOf(s.p + glm::dvec3(r), cell_, s.surface);
+    int grid = 0;
+    while (grid + 1 < kReachGrids && r <= size(grid + 1)) ++grid;
+    finest_ = std::max(finest_, grid);
+    const Cell lo = cellOf(s.p - glm::dvec3(r), size(grid), s.surface);
+    const Cell hi = cellOf(s.p + glm::dvec3(r), size(grid), s.surface);
     for (int64_t x = lo.x; x <= hi.x; ++x)
       for (int64_t y = lo.y; y <= hi.y; ++y)
-        for (int64_t z = lo.z; z <= hi.z; ++z) cells_[{x, y, z, s.surface}].push_back(v);
+        for (int64_t z = lo.z; z <= hi.z; ++z) cells_[size_t(grid)][{x, y, z, s.surface}].push_back(v);
   }
-  /// The gathering vertices whose reach may cover site s.
-  const std::vector<int>& near(const Site& s) const {
-    const auto it = cells_.find(cellOf(s.p, cell_, s.surface));
-    return it == cells_.end() ? none_ : it->second;
+  /// Calls f with each gathering vertex whose reach may cover site s.
+  template <class F>
+  void near(const Site& s, F f) const {
+    for (int grid = 0; grid <= finest_; ++grid) {
+      const auto& cells = cells_[size_t(grid)];
+      if (cells.empty()) continue;
+      const auto it = cells.find(cellOf(s.p, size(grid), s.surface));
+      if (it != cells.end())
+        for (int g : it->second) f(g);
+    }
   }
 
  private:
+  double size(int grid) const { return std::ldexp(cell_, -grid); }
   double cell_, accuracy_;
-  std::unordered_map<Cell, std::vector<int>, CellHash> cells_;
-  std::vector<int> none_;
+  int finest_ = 0;
+  std::array<std::unordered_map<Cell, std::vector<int>, CellHash>, kReachGrids> cells_;
 };
 
 }  // namespace
@@ -128,11 +144,12 @@ GatherCache chooseGathering(const PatchMesh& mesh, const std::vector<int>& candi
   const double maxReach = maxGatherReach(sceneSize, accuracy, farthest);
   Gathered gathered(accuracy * maxReach, accuracy);
   auto covered = [&](int v) {
-    for (int g : gathered.near(sites[size_t(v)]))
-      if (gatherWeight(sites[size_t(g)].p, sites[size_t(g)].n, out.reach[size_t(g)], sites[size_t(v)].p,
-                       sites[size_t(v)].n, accuracy) > 0)
-        return true;
-    return false;
+    bool any = false;
+    gathered.near(sites[size_t(v)], [&](int g) {
+      any = any || gatherWeight(sites[size_t(g)].p, sites[size_t(g)].n, out.reach[size_t(g)], sites[size_t(v)].p,
+                                sites[size_t(v)].n, accuracy) > 0;
+    });
+    return any;
   };
   std::vector<int> uncovered = candidates;
   double cell = kFirstGatherCell * sceneSize;
@@ -175,10 +192,10 @@ GatherCache chooseGathering(const PatchMesh& mesh, const std::vector<int>& candi
     if (!out.from[size_t(v)].empty()) continue;
     const Site& s = sites[size_t(v)];
     double sum = 0;
-    for (int g : gathered.near(s)) {
+    gathered.near(s, [&](int g) {
       const double w = gatherWeight(sites[size_t(g)].p, sites[size_t(g)].n, out.reach[size_t(g)], s.p, s.n, accuracy);
       if (w > 0) out.from[size_t(v)].emplace_back(g, w), sum += w;
-    }
+    });
     for (auto& [g, w] : out.from[size_t(v)]) w /= sum;
   }
   return out;

@@ -35,6 +35,21 @@ void optionalResolution(const Node& n, const char* key, std::optional<int>& slot
   slot = int(x);
 }
 
+/// slot = the quality named at `key`, if the key is there.
+void optionalQuality(const Node& n, const char* key, std::optional<Quality>& slot) {
+  if (!n.has(key)) return;
+  const Node q = n[key];
+  const std::string name = q.string();
+  if (name == "draft")
+    slot = Quality::Draft;
+  else if (name == "default")
+    slot = Quality::Default;
+  else if (name == "final")
+    slot = Quality::Final;
+  else
+    q.fail("\"draft\", \"default\" or \"final\"");
+}
+
 /// Lengths, limits and switches, in the order they are checked.
 void readSolverNumbers(const Node& n, SolverBlock& b) {
   optionalNumber(n, "max_element_edge", 1e-300, HUGE_VAL, "(0, inf)", b.maxElementEdge);
@@ -72,13 +87,14 @@ void readSolverCounts(const Node& n, SolverBlock& b) {
 }  // namespace
 
 void readSolver(const Node& n, SolverBlock& b) {
-  n.expectObject({"max_element_edge", "max_patch_edge", "hemicube_resolution",
+  n.expectObject({"quality", "max_element_edge", "max_patch_edge", "hemicube_resolution",
                   "emitter_hemicube_resolution", "tolerance",
                   "seed", "max_shots", "time_limit", "overshoot", "exposure", "emitter_samples",
                   "shooter_samples", "proximity_samples", "factor_cache_mb", "cut_contacts", "fix_facing",
                   "adaptive", "min_element_edge", "contrast", "vertex_direct", "max_elements",
                   "final_gather", "gather_resolution", "gather_accuracy", "cluster_shooters",
                   "resolution_follows_power"});
+  optionalQuality(n, "quality", b.quality);
   readSolverNumbers(n, b);
   readSolverCounts(n, b);
 }
