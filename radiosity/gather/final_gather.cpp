@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 
 #include "mesh/base/parallel.h"
+#include "mesh/mesh_settings.h"
 #include "radiosity/formfactors/flat_regions.h"
 #include "radiosity/formfactors/hemicube.h"
 #include "radiosity/gather/gather_points.h"
@@ -49,6 +50,12 @@ void factorsAt(const PatchMesh& mesh, double sceneSize, unsigned seed, int v, He
   cube.compute(offSurface(probe, sceneSize), probe.normal, hemicubeRotation(seed, kGatherStream + uint64_t(v), 0), out);
 }
 
+/// The farthest a vertex takes gathering vertices' light from: kGatherFarthestShare of the
+/// element edge, the default one's if the options do not say.
+double farthestInterpolated(const GatherOptions& options, double sceneSize) {
+  return kGatherFarthestShare * (options.elementEdge > 0 ? options.elementEdge : sceneSize / kDefaultElementsPerDiagonal);
+}
+
 /// The chance that vertex v of `mesh`, whose hemicube showed its nearest surface `nearest` away, gathers
 /// (GatherCache): its share of the area over the area a gathering vertex there covers, about
 /// kGatherCoverShare of π·(accuracy·R)².
@@ -57,7 +64,7 @@ double gatherShare(const PatchMesh& mesh, int v, double nearest, double sceneSiz
   if (accuracy <= 0) return 1;
   double area = 0;
   for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(v))) area += mesh.area(f.idx()) / 3;
-  const double R = std::min(nearest, maxGatherReach(sceneSize, accuracy, kGatherFarthestShare * options.elementEdge));
+  const double R = std::min(nearest, maxGatherReach(sceneSize, accuracy, farthestInterpolated(options, sceneSize)));
   const double covers = kGatherCoverShare * M_PI * (accuracy * R) * (accuracy * R);
   return std::min(1.0, area / covers);
 }
@@ -121,7 +128,7 @@ GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const Gath
                             const std::atomic<bool>* cancel) {
   GatherRows out;
   out.cache = chooseGathering(drawn, gatheringVertices(drawn), options.accuracy, sceneSize,
-                              kGatherFarthestShare * options.elementEdge,
+                              farthestInterpolated(options, sceneSize),
                               [&](const std::vector<int>& which, std::vector<double>& nearest) {
                                 renderRows(drawn, drawn, sceneSize, which, options, y, cancel, out);
                                 for (int v : which) nearest[size_t(v)] = out.nearest[size_t(v)];

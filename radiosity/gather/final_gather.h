@@ -72,8 +72,8 @@ struct GatherOptions {
   /// takes differ by more than this share of their mean over the progressive start's light,
   /// or it takes one alone; 0: never.
   double agreement = kDefaultGatherAgreement;
-  /// The scene's element edge (0: unknown): where the mesh is this fine, every vertex gathers
-  /// (kGatherFarthestShare).
+  /// The scene's element edge (0: the default's, the scene size / kDefaultElementsPerDiagonal):
+  /// where the mesh is as fine as this, every vertex gathers (kGatherFarthestShare).
   double elementEdge = 0;
   int workers = 0;                ///< hemicubes rendering at once (0: one per hardware thread)
   double tolerance = 1e-5;        ///< relative residual of the vertex system
