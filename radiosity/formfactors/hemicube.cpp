@@ -253,7 +253,6 @@ void Hemicube::compute(const glm::dvec3& x, const glm::dvec3& n, double rotation
     accumulateLocated(out);
   else
     accumulate(out);
-  out.nearest = nearest();
 }
 
 double Hemicube::nearest() const {

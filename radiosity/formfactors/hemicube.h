@@ -61,10 +61,6 @@ struct FormFactors {
   std::vector<int> elements;
   std::vector<double> factors;
   double sky = 0, backFaces = 0;
-  /// The distance from the eye to the nearest surface (either side) a pixel centre shows, or
-  /// infinity: the light arriving from place to place changes over distances like this
-  /// (Tabellion & Lamorlette 2004 take it for Ward's harmonic mean distance).
-  double nearest = 0;
 
   double sum() const;
 };
@@ -124,6 +120,11 @@ class Hemicube {
                const std::vector<int>& excluded = {});
 
   int resolution() const { return resolution_; }
+  /// The distance from the eye to the nearest surface (either side) a pixel centre showed in
+  /// the last compute(), or infinity: the light arriving from place to place changes over
+  /// distances like this (Tabellion & Lamorlette 2004 take it for Ward's harmonic mean
+  /// distance). Asked for, not computed with every cube: the shooters' need none of it.
+  double nearest() const;
   /// Which elements the following computes sort to the faces (default Auto, which the first
   /// compute resolves).
   void setCulling(HemicubeCulling culling);
@@ -196,8 +197,6 @@ class Hemicube {
   void drawBatches(bool forTests);
   /// Sums each face's delta form factors per item into `out` (elements ascending).
   void accumulate(FormFactors& out);
-  /// FormFactors::nearest of the faces as drawn.
-  double nearest() const;
   /// accumulate() drawing flat regions: each pixel's delta form factor to the element its
   /// centre's ray meets.
   void accumulateLocated(FormFactors& out);

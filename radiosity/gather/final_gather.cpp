@@ -105,7 +105,7 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
     const int v = which[k];
     FormFactors& f = scratch[size_t(worker)];
     factorsAt(mesh, sceneSize, options.seed, v, *cubes[size_t(worker)], f);
-    out.nearest[size_t(v)] = f.nearest;
+    out.nearest[size_t(v)] = cubes[size_t(worker)]->nearest();
     out.rendered[size_t(v)] = 1;
     GatherRow& row = out.rows[size_t(v)];
     row.elements = f.elements;
@@ -404,7 +404,7 @@ GatherEstimate estimateGather(const PatchMesh& mesh, double sceneSize, const Gat
   for (size_t k = 0; k < probes; ++k) {
     const int v = gathering[(2 * k + 1) * gathering.size() / (2 * probes)];
     factorsAt(mesh, sceneSize, options.seed, v, cube, f);
-    share += gatherShare(mesh, v, f.nearest, sceneSize, options);
+    share += gatherShare(mesh, v, cube.nearest(), sceneSize, options);
     out.drawn += double(cube.sorted());
     out.located += double(cube.counts().located);
     out.factors += double(f.elements.size());

@@ -116,7 +116,7 @@ struct GatherRow {
 /// the start is shot (GatherAhead).
 struct GatherRows {
   std::vector<GatherRow> rows;   ///< per vertex of the drawn mesh (empty: black, interpolated, or let go)
-  std::vector<double> nearest;   ///< per vertex, FormFactors::nearest where rendered
+  std::vector<double> nearest;   ///< per vertex, Hemicube::nearest where rendered
   std::vector<char> rendered;    ///< per vertex, whether its hemicube was rendered
   GatherCache cache;             ///< which vertices of the drawn mesh gather, and how the others interpolate
   std::vector<glm::dvec3> once;  ///< per vertex, its row over `y` (renderGatherRows), if given

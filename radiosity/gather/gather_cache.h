@@ -5,7 +5,7 @@
 // Rubinstein & Clear 1988, "A ray tracing solution for diffuse interreflection", with the
 // harmonic mean distance; here, as Tabellion & Lamorlette 2004, the nearest surface's: a
 // vertex beside a gathering one that sees far may have a surface near it that the gathering
-// one sees only at the horizon; R from the hemicube's depths, FormFactors::nearest). A vertex
+// one sees only at the horizon; R from the hemicube's depths, Hemicube::nearest). A vertex
 // lying within accuracy·R of gathering vertices of its own surface, facing their way, takes
 // their light interpolated, weighted by Ward's 1/ε; the others gather themselves.
 //
@@ -52,7 +52,7 @@ struct GatherCache {
   bool complete = true;  ///< false: `render` gave up (deadline, cancelled): `from` is empty
 };
 
-/// Renders the hemicubes of vertices `which` and gives each one's FormFactors::nearest in
+/// Renders the hemicubes of vertices `which` and gives each one's Hemicube::nearest in
 /// `nearest` (per vertex of the mesh), or returns false to give up.
 using GatherRender = std::function<bool(const std::vector<int>& which, std::vector<double>& nearest)>;
 
