@@ -36,6 +36,18 @@ Mesh::EdgeHandle longest(const Mesh& m, Mesh::FaceHandle f) {
   return best;
 }
 
+/// Whether f is flat, its corners on one line to rounding (height over its longest edge below
+/// kFlatHeight): halving such an element makes more of them, without end, and no light to see.
+constexpr double kFlatHeight = 1e-9;
+bool flat(const Mesh& m, Mesh::FaceHandle f) {
+  auto h = m.halfedge_handle(f);
+  const auto a = m.point(m.from_vertex_handle(h)), b = m.point(m.to_vertex_handle(h)),
+             c = m.point(m.to_vertex_handle(m.next_halfedge_handle(h)));
+  const double twiceArea = ((b - a) % (c - a)).norm();
+  const double longest2 = std::max({(b - a).sqrnorm(), (c - b).sqrnorm(), (a - c).sqrnorm()});
+  return twiceArea <= kFlatHeight * longest2;
+}
+
 /// The mean length of the mesh's edges (0 without edges).
 double meanEdgeLength(const Mesh& m) {
   double sum = 0;
@@ -113,14 +125,17 @@ struct PositionHash {
 
 class Bisector {
  public:
-  Bisector(PatchMesh& mesh, std::vector<EdgeSplit>* splits) : pm_(mesh), m_(mesh.mesh), splits_(splits) {
+  Bisector(PatchMesh& mesh, std::vector<EdgeSplit>* splits, double minEdge)
+      : pm_(mesh), m_(mesh.mesh), splits_(splits), minSquared_(minEdge * minEdge) {
     for (auto v : m_.vertices()) at_.emplace(m_.point(v), v.idx());
   }
 
   /// Bisects f across its longest edge, after its LEPP neighbours as needed; false, f left
-  /// as it is, when an edge on the way is too short to halve.
+  /// as it is, when an element on the way is flat or an edge too short to halve (shorter than
+  /// the floor, or a rounding step long).
   bool bisect(Mesh::FaceHandle f) {
     for (;;) {
+      if (flat(m_, f)) return false;
       auto e = longest(m_, f);
       auto g = across(f, e);
       if (!g.is_valid() || longest(m_, g) == e) return split(e);
@@ -175,16 +190,14 @@ class Bisector {
   std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twinsOf(Mesh::VertexHandle a,
                                                                           Mesh::VertexHandle b) const {
     std::vector<std::pair<Mesh::VertexHandle, Mesh::VertexHandle>> twins;
+    const auto pb = m_.point(b);
     auto [lo, hi] = at_.equal_range(m_.point(a));
     for (auto it = lo; it != hi; ++it) {
       Mesh::VertexHandle a2(it->second);
-      auto [lo2, hi2] = at_.equal_range(m_.point(b));
-      for (auto jt = lo2; jt != hi2; ++jt) {
-        Mesh::VertexHandle b2(jt->second);
-        // Either end may be the same vertex: where a seam ends inside a surface, its last
-        // vertex is both sides' own.
-        if ((a2 != a || b2 != b) && m_.find_halfedge(a2, b2).is_valid()) twins.emplace_back(a2, b2);
-      }
+      // Either end may be the same vertex: where a seam ends inside a surface, its last
+      // vertex is both sides' own.
+      for (auto b2 : m_.vv_range(a2))
+        if ((a2 != a || b2 != b) && m_.point(b2) == pb) twins.emplace_back(a2, b2);
     }
     return twins;
   }
@@ -208,10 +221,15 @@ class Bisector {
   }
 
   /// Splits edge e at its midpoint (and the same edge of other surfaces: splitTwins); false,
-  /// nothing split, when the midpoint rounds to an end (a sliver's corners a rounding step
-  /// apart: halved, the same point came back without end).
+  /// nothing split, when e is shorter than the floor, an element beside it is flat, or its
+  /// midpoint rounds to an end. Without these, a fan of flat slivers (where meshing cut a
+  /// cornice's end to a line, its corners micrometres apart) was halved down to rounding
+  /// steps: thousands of vertices on one point, minutes, and the stack's end.
   bool split(Mesh::EdgeHandle e) {
+    if (squaredLength(m_, e) < minSquared_) return false;
     auto h = m_.halfedge_handle(e, 0);
+    for (auto side : {h, m_.opposite_halfedge_handle(h)})
+      if (m_.face_handle(side).is_valid() && flat(m_, m_.face_handle(side))) return false;
     const auto a = m_.from_vertex_handle(h), b = m_.to_vertex_handle(h);  // before the split
     const auto mid = (m_.point(a) + m_.point(b)) * 0.5;
     if (mid == m_.point(a) || mid == m_.point(b)) return false;
@@ -235,6 +253,7 @@ class Bisector {
   PatchMesh& pm_;
   Mesh& m_;
   std::vector<EdgeSplit>* splits_;
+  double minSquared_;  // edges shorter than the floor, squared, are left whole
   std::unordered_multimap<OpenMesh::Vec3d, int, PositionHash> at_;  // vertices by position
   int added_ = 0;
 };
@@ -255,10 +274,10 @@ double longestEdge(const PatchMesh& mesh, int e) {
   return std::sqrt(squaredLength(mesh.mesh, longest(mesh.mesh, Mesh::FaceHandle(e))));
 }
 
-int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
-                   std::vector<EdgeSplit>* splits) {
+int bisectElements(PatchMesh& mesh, const std::vector<int>& elements, std::vector<EdgeSplit>* splits,
+                   double minEdge) {
   const int before = mesh.elementCount();
-  Bisector bisector(mesh, splits);
+  Bisector bisector(mesh, splits, minEdge);
   // An element listed may already have been halved by a neighbour's propagation path; it is
   // bisected once more all the same: what was asked is that it get smaller.
   for (int e : elements) {

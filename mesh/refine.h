@@ -17,12 +17,13 @@ namespace rad {
 /// takes half its parent's area, so patch and surface areas do not change. Elements are only
 /// added (existing indices keep their parent's first half); patch element lists, surface
 /// element counts and vertex normals are brought up to date. Returns the elements added.
-/// `splits`, if given, receives each vertex added and the ends of the edge it halves.
+/// `splits`, if given, receives each vertex added and the ends of the edge it halves. No edge
+/// shorter than `minEdge` is split: an element whose bisection would need one stays whole.
 struct EdgeSplit {
   int vertex = -1, from = -1, to = -1;
 };
 int bisectElements(PatchMesh& mesh, const std::vector<int>& elements,
-                   std::vector<EdgeSplit>* splits = nullptr);
+                   std::vector<EdgeSplit>* splits = nullptr, double minEdge = 0);
 
 /// The longest edge of element e.
 double longestEdge(const PatchMesh& mesh, int e);

@@ -220,12 +220,14 @@ namespace {
 /// the light is known: that light, by new vertex, moved out of `midpoints`; or, for an edge
 /// that had no midpoint probed (made by this round's bisection, or split to keep the mesh
 /// conforming), the ends of that edge, by new vertex, in `between`. `changed`: the elements
-/// round the new vertices (every other element is as it was).
-std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked,
+/// round the new vertices (every other element is as it was). Edges shorter than half the
+/// smallest element's are left whole: a marked element is longer than that smallest, its
+/// halves half as long at least, and only slivers' propagation paths need shorter ones.
+std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked, double minElementEdge,
                                             MidpointLight& midpoints, std::vector<int>& changed,
                                             std::unordered_map<int, std::pair<int, int>>& between) {
   std::vector<EdgeSplit> splits;
-  bisectElements(mesh, marked, &splits);
+  bisectElements(mesh, marked, &splits, 0.5 * minElementEdge);
   changed.clear();
   for (const auto& s : splits)
     for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(s.vertex))) changed.push_back(f.idx());
@@ -291,7 +293,7 @@ AdaptiveStats refineAdaptively(PatchMesh& mesh, DirectLight& light, const Adapti
     if (marked.empty()) break;
     stats.marked += int(marked.size());
     std::unordered_map<int, std::pair<int, int>> between;
-    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, midpoints, changed, between);
+    std::unordered_map<int, VertexLight> known = bisect(mesh, marked, options.minElementEdge, midpoints, changed, between);
     light.update(mesh, &known, &between);
     encloseNewVertices(mesh, light, options.gapReach, enclosure);
     ++stats.rounds;

@@ -81,6 +81,72 @@ TEST_P(RefineTest, BisectionConformsAndKeepsAreasAndAttributes) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, RefineTest, ::testing::Values("cornell.json", "contacts.json"));
 
+/// A mesh of one surface from its points (x, y) and faces; their areas are not used here.
+PatchMesh flatMesh(const std::vector<glm::dvec2>& points, const std::vector<std::array<int, 3>>& faces) {
+  PatchMesh m;
+  m.surfaces.resize(1);
+  m.patches.resize(1);
+  for (const auto& p : points) m.mesh.add_vertex({p.x, p.y, 0});
+  for (const auto& f : faces) {
+    auto h = m.mesh.add_face(TriMesh::VertexHandle(f[0]), TriMesh::VertexHandle(f[1]), TriMesh::VertexHandle(f[2]));
+    m.setElement(h.idx(), 0, 0, 1.0, glm::dvec3(0.5), glm::dvec3(0.0), {0, 0, 1});
+    m.setPatch(h.idx(), 0);
+  }
+  return m;
+}
+
+/// A unit square refined round after round towards its corner at the origin: no edge shorter
+/// than the floor is split; without one, edges far shorter are.
+TEST(RefineFloorTest, EdgesShorterThanTheFloorStayWhole) {
+  constexpr double kFloor = 0.05;
+  auto splitLengths = [](double floor) {
+    PatchMesh m = flatMesh({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0, 1, 2}, {0, 2, 3}});
+    std::vector<double> lengths;
+    for (int round = 0; round < 20; ++round) {
+      std::vector<int> atOrigin;
+      for (int e = 0; e < m.elementCount(); ++e)
+        for (const auto& c : m.corners(e))
+          if (c == glm::dvec3(0.0)) atOrigin.push_back(e);
+      std::vector<EdgeSplit> splits;
+      bisectElements(m, atOrigin, &splits, floor);
+      for (const auto& s : splits)
+        lengths.push_back((m.mesh.point(TriMesh::VertexHandle(s.from)) - m.mesh.point(TriMesh::VertexHandle(s.to))).norm());
+    }
+    return lengths;
+  };
+  const std::vector<double> floored = splitLengths(kFloor), unfloored = splitLengths(0);
+  ASSERT_FALSE(floored.empty());
+  EXPECT_GE(*std::min_element(floored.begin(), floored.end()), kFloor);
+  EXPECT_LT(*std::min_element(unfloored.begin(), unfloored.end()), kFloor / 10);
+}
+
+/// A triangle beside a fan of flat slivers, their corners on its edge (as meshing left where a
+/// cornice's end was cut to a line, micrometres apart), every element bisected round after
+/// round without a floor: the slivers stay as they are and the rest is refined (halving them
+/// made more without end, until the stack overflowed).
+TEST(RefineFloorTest, FlatSliversStayWhole) {
+  // The triangle (0, 1, 2) with its longest edge 0–1 outside; across its edge 1–2, slivers
+  // whose corners lie on 1–2.
+  PatchMesh m = flatMesh({{-3, 0.5}, {0, 0}, {0, 1}, {0, 0.5}, {0, 0.25}, {0, 1e-3}, {0, 1e-6}},
+                         {{0, 1, 2}, {2, 1, 3}, {2, 3, 4}, {2, 4, 5}, {2, 5, 6}});
+  auto flatElements = [&] {
+    int flat = 0;
+    for (int e = 0; e < m.elementCount(); ++e) {
+      const auto c = m.corners(e);
+      flat += triangleArea(c[0], c[1], c[2]) == 0;
+    }
+    return flat;
+  };
+  ASSERT_EQ(flatElements(), 4);
+  for (int round = 0; round < 6; ++round) {
+    std::vector<int> all(size_t(m.elementCount()));
+    for (int e = 0; e < m.elementCount(); ++e) all[size_t(e)] = e;
+    bisectElements(m, all);
+  }
+  EXPECT_EQ(flatElements(), 4);
+  EXPECT_GT(m.elementCount(), 5 + 16);
+}
+
 /// Two triangles of one surface on either side of a line, one of them split at the line's
 /// midpoint without the other: the midpoint is a T-junction. Split conformingly, none.
 TEST(TJunctionTest, FindsTJunctions) {

@@ -19,6 +19,8 @@ std::chrono::steady_clock::duration after(double seconds) {
 
 }  // namespace
 
+ProgressSink currentProgressSink() { return threadSink(); }
+
 ProgressScope::ProgressScope(ProgressSink sink) : previous_(std::exchange(threadSink(), std::move(sink))) {}
 
 ProgressScope::~ProgressScope() { threadSink() = std::move(previous_); }

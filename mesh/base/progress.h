@@ -32,6 +32,10 @@ class ProgressScope {
   ProgressSink previous_;
 };
 
+/// The calling thread's sink (empty: none), for a stage another thread runs on its behalf to
+/// install there (a ProgressScope of its own).
+ProgressSink currentProgressSink();
+
 /// The progress of one stage of `total` steps, said on the thread's sink as
 /// "<what> <done>/<total> (<seconds> s)" once the stage has run kProgressDelay seconds, then at
 /// most every kProgressInterval seconds.

@@ -205,7 +205,7 @@ namespace {
 
 /// A long stage's progress line on stderr, as every command says it.
 void sayProgress(const std::string& line) {
-  std::cerr << "radiosity: " << line << "\n";
+  std::cerr << "radiosity: " + line + "\n";  // one write: the gather ahead says its own from its thread
 }
 
 /// An error on stderr, as every command says it.

@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 
 #include "mesh/base/parallel.h"
+#include "mesh/base/progress.h"
 #include "mesh/mesh_settings.h"
 #include "radiosity/formfactors/flat_regions.h"
 #include "radiosity/formfactors/hemicube.h"
@@ -96,8 +97,10 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
   std::atomic<long> factors{out.factors};
   std::atomic<bool> late{false}, over{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
+  StageProgress progress("final gather: hemicubes", which.size());  // said by the caller's worker
   parallelFor(which.size(), workers, [&](size_t k, int worker) {
     if (late || over) return;
+    if (worker == 0) progress.update(k);
     if ((options.deadline && Clock::now() > *options.deadline) || (cancel && *cancel)) {
       late = true;
       return;
@@ -139,7 +142,8 @@ GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const Gath
 
 GatherAhead::GatherAhead(std::shared_ptr<const PatchMesh> drawn, double sceneSize, const GatherOptions& options)
     : drawn_(std::move(drawn)) {
-  rendering_ = std::async(std::launch::async, [this, sceneSize, options] {
+  rendering_ = std::async(std::launch::async, [this, sceneSize, options, sink = currentProgressSink()] {
+    const ProgressScope progress(sink);  // the hemicubes' progress said as the caller's stages are
     return renderGatherRows(*drawn_, sceneSize, options, nullptr, &cancel_);
   });
 }
