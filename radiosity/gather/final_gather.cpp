@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include <glm/common.hpp>
 
@@ -81,9 +82,10 @@ std::vector<int> gatheringVertices(const PatchMesh& mesh) {
 
 /// Renders the hemicubes of `mesh`'s vertices `which` over `drawn`'s elements into `out`
 /// (rows per vertex of mesh), each gathered over y at once if given, and let go once the
-/// rows outgrow the budget.
-void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize, const std::vector<int>& which,
-                const GatherOptions& options, const Field* y, const std::atomic<bool>* cancel, GatherRows& out) {
+/// rows outgrow the budget. `what`: the vertices, as the progress line names them.
+void renderRows(const std::string& what, const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
+                const std::vector<int>& which, const GatherOptions& options, const Field* y,
+                const std::atomic<bool>* cancel, GatherRows& out) {
   const auto clock = Clock::now();
   const FlatRegions regions(drawn, sceneSize);
   const int workers = workerCount(options.workers);
@@ -97,7 +99,7 @@ void renderRows(const PatchMesh& mesh, const PatchMesh& drawn, double sceneSize,
   std::atomic<long> factors{out.factors};
   std::atomic<bool> late{false}, over{false};
   const long budget = long(options.memoryBytes / (sizeof(int) + sizeof(float)));
-  StageProgress progress("final gather: hemicubes", which.size());  // said by the caller's worker
+  StageProgress progress("final gather: hemicubes at " + what, which.size());  // said by the caller's worker
   parallelFor(which.size(), workers, [&](size_t k, int worker) {
     if (late || over) return;
     if (worker == 0) progress.update(k);
@@ -133,7 +135,7 @@ GatherRows renderGatherRows(const PatchMesh& drawn, double sceneSize, const Gath
   out.cache = chooseGathering(drawn, gatheringVertices(drawn), options.accuracy, sceneSize,
                               farthestInterpolated(options, sceneSize),
                               [&](const std::vector<int>& which, std::vector<double>& nearest) {
-                                renderRows(drawn, drawn, sceneSize, which, options, y, cancel, out);
+                                renderRows("gathering vertices", drawn, drawn, sceneSize, which, options, y, cancel, out);
                                 for (int v : which) nearest[size_t(v)] = out.nearest[size_t(v)];
                                 return !out.timedOut && (out.kept || y);
                               });
@@ -446,7 +448,7 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   if (ofDrawn.cache.complete) {
     interpolated = ofDrawn.cache.from;
     const std::vector<int> doubtful = disagreeing(ofDrawn, y, options.agreement);
-    if (!doubtful.empty()) renderRows(drawn, drawn, sceneSize, doubtful, options, &y, nullptr, doubted);
+    if (!doubtful.empty()) renderRows("doubted vertices", drawn, drawn, sceneSize, doubtful, options, &y, nullptr, doubted);
     if (doubted.timedOut) {  // past the deadline: they interpolate, as they would without the doubt
       doubted = GatherRows{};
       doubted.factors = ofDrawn.factors;
@@ -463,7 +465,7 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   GatherRows own;
   own.factors = doubted.factors;  // counted against the same budget
   std::vector<int> loners = lonersOf(points);
-  if (!loners.empty()) renderRows(mesh, drawn, sceneSize, loners, options, &y, nullptr, own);
+  if (!loners.empty()) renderRows("refined vertices", mesh, drawn, sceneSize, loners, options, &y, nullptr, own);
   // Past the deadline with the drawn mesh's rows all there, the vertices refinement added
   // interpolate their base corners, as they would without hemicubes of their own.
   if (own.timedOut && !ofDrawn.timedOut && ownHemicube) {
