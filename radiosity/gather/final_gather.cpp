@@ -358,36 +358,6 @@ struct DrawnRows {
   }
 };
 
-/// The drawn mesh's vertices that the cache interpolates from gathering vertices whose light
-/// over y (the progressive start's) differs by more than `agreement` of their mean, or from
-/// a single one: their light may change between them faster than the cache assumed.
-std::vector<int> disagreeing(const GatherRows& rows, const Field& y, double agreement) {
-  const GatherCache& cache = rows.cache;
-  std::vector<int> out;
-  if (agreement <= 0) return out;
-  auto luminance = [&](int d) {
-    const glm::dvec3 h = rows.once.empty() ? gatherRow(rows.rows[size_t(d)], y) : rows.once[size_t(d)];
-    return h.x + h.y + h.z;
-  };
-  std::vector<double> gathered(cache.from.size(), -1.0);
-  for (size_t v = 0; v < cache.from.size(); ++v) {
-    const auto& from = cache.from[v];
-    if (from.empty() || (from.size() == 1 && from[0].first == int(v))) continue;  // not asked, or gathers
-    if (from.size() == 1) {
-      out.push_back(int(v));
-      continue;
-    }
-    double lo = HUGE_VAL, hi = 0, mean = 0;
-    for (const auto& [g, w] : from) {
-      double& h = gathered[size_t(g)];
-      if (h < 0) h = luminance(g);
-      lo = std::min(lo, h), hi = std::max(hi, h), mean += w * h;
-    }
-    if (hi - lo > agreement * mean) out.push_back(int(v));
-  }
-  return out;
-}
-
 /// The gathering vertices that are not the drawn mesh's: they render hemicubes of their own.
 std::vector<int> lonersOf(const GatherPoints& points) {
   std::vector<int> out;
@@ -447,7 +417,10 @@ std::vector<glm::dvec3> finalGather(const PatchMesh& mesh, const PatchMesh* base
   DrawnInterpolation interpolated;
   if (ofDrawn.cache.complete) {
     interpolated = ofDrawn.cache.from;
-    const std::vector<int> doubtful = disagreeing(ofDrawn, y, options.agreement);
+    const std::vector<int> doubtful = disagreeing(ofDrawn.cache, [&](int d) {
+      const glm::dvec3 h = ofDrawn.once.empty() ? gatherRow(ofDrawn.rows[size_t(d)], y) : ofDrawn.once[size_t(d)];
+      return h.x + h.y + h.z;
+    }, options.agreement);
     if (!doubtful.empty()) renderRows("doubted vertices", drawn, drawn, sceneSize, doubtful, options, &y, nullptr, doubted);
     if (doubted.timedOut) {  // past the deadline: they interpolate, as they would without the doubt
       doubted = GatherRows{};

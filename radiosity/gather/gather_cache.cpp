@@ -201,4 +201,26 @@ GatherCache chooseGathering(const PatchMesh& mesh, const std::vector<int>& candi
   return out;
 }
 
+std::vector<int> disagreeing(const GatherCache& cache, const std::function<double(int)>& light, double agreement) {
+  std::vector<int> out;
+  if (agreement <= 0) return out;
+  std::vector<double> known(cache.from.size(), -1.0);  // light per gathering vertex, once asked
+  for (size_t v = 0; v < cache.from.size(); ++v) {
+    const auto& from = cache.from[v];
+    if (from.empty() || (from.size() == 1 && from[0].first == int(v))) continue;  // not asked, or gathers
+    if (from.size() == 1) {
+      out.push_back(int(v));
+      continue;
+    }
+    double lo = HUGE_VAL, hi = 0, mean = 0;
+    for (const auto& [g, w] : from) {
+      double& h = known[size_t(g)];
+      if (h < 0) h = light(g);
+      lo = std::min(lo, h), hi = std::max(hi, h), mean += w * h;
+    }
+    if (hi - lo > agreement * mean) out.push_back(int(v));
+  }
+  return out;
+}
+
 }  // namespace rad

@@ -62,6 +62,12 @@ using GatherRender = std::function<bool(const std::vector<int>& which, std::vect
 GatherCache chooseGathering(const PatchMesh& mesh, const std::vector<int>& candidates, double accuracy,
                             double sceneSize, double farthest, const GatherRender& render);
 
+/// The candidates `cache` interpolates from gathering vertices whose `light` (luminance of
+/// what each gathers over the progressive start) differs by more than `agreement` of their
+/// weighted mean, or from a single one: the light may change between them faster than the
+/// cache assumed, so they gather themselves. agreement ≤ 0: none.
+std::vector<int> disagreeing(const GatherCache& cache, const std::function<double(int)>& light, double agreement);
+
 /// The largest R a gathering vertex is given: kMaxGatherReach of the scene, and no more than
 /// lets it cover `farthest` (if positive).
 double maxGatherReach(double sceneSize, double accuracy, double farthest);
