@@ -85,12 +85,16 @@ std::vector<int> lightOfSamples(const DirectLight& light) {
   return lightOf;
 }
 
-/// Elements that may be refined (all, or those `among`): larger than the floor, and not black
-/// (black shows no light).
+/// The floor for sharp changes (RefineTest's): elements down to it may still be bisected.
+double sharpFloor(const AdaptiveOptions& options) { return options.minElementEdge / kSharpRefinement; }
+
+/// Elements that may be refined (all, or those `among`): larger than the floor for sharp
+/// changes, and not black (black shows no light).
 std::vector<int> refinable(const PatchMesh& mesh, const AdaptiveOptions& options, const std::vector<int>* among) {
   std::vector<int> out;
+  const double floor = sharpFloor(options);
   auto consider = [&](int e) {
-    if (longestEdge(mesh, e) > options.minElementEdge && mesh.reflectance(e) != glm::dvec3(0.0)) out.push_back(e);
+    if (longestEdge(mesh, e) > floor && mesh.reflectance(e) != glm::dvec3(0.0)) out.push_back(e);
   };
   if (among)
     std::for_each(among->begin(), among->end(), consider);
@@ -146,16 +150,16 @@ struct RefineTest {
   const std::vector<double>& enclosure;
   std::vector<int> lightOf;
   glm::dvec3 ambient;
-  double exposure, contrast;
+  double exposure, contrast, minElementEdge;
 
   /// The display value of a luminance on element e, the ambient estimate added.
   double shown(int e, double lum) const {
     return display(lum + luminance(mesh.reflectance(e) * ambient), exposure);
   }
 
-  /// What Gouraud shading shows at an edge's midpoint against the light there; the edge's
-  /// start vertices in `corner`.
-  bool midpointsDiffer(int e, std::array<int, 3>& corner) const {
+  /// What Gouraud shading shows at an edge's midpoint against the light there, differing by
+  /// more than `threshold`; the edge's start vertices in `corner`.
+  bool midpointsDiffer(int e, std::array<int, 3>& corner, double threshold) const {
     const TriMesh& m = mesh.mesh;
     bool differ = false;
     int k = 0;
@@ -165,19 +169,19 @@ struct RefineTest {
       const double interpolated =
           0.5 * (luminance(vertices[size_t(a)].radiosity) + luminance(vertices[size_t(b)].radiosity));
       const double actual = luminance(midpoints.at(edgeKey(a, b)).radiosity);
-      differ = differ || std::abs(shown(e, actual) - shown(e, interpolated)) > contrast;
+      differ = differ || std::abs(shown(e, actual) - shown(e, interpolated)) > threshold;
     }
     return differ;
   }
 
-  /// Shadow boundaries: light one vertex sees that another does not.
-  bool shadowCrosses(int e, const std::array<int, 3>& corner) const {
+  /// Shadow boundaries: light one vertex sees that another does not, showing more than `threshold`.
+  bool shadowCrosses(int e, const std::array<int, 3>& corner, double threshold) const {
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j) {
         const VertexLight &vi = vertices[size_t(corner[i])], &vj = vertices[size_t(corner[j])];
         if (i == j || vi.visible == vj.visible) continue;
         const double lum = luminance(vi.radiosity);
-        if (shown(e, lum) - shown(e, lum - lightOnlyFrom(vi, vj, lightOf)) > contrast) return true;
+        if (shown(e, lum) - shown(e, lum - lightOnlyFrom(vi, vj, lightOf)) > threshold) return true;
       }
     return false;
   }
@@ -192,7 +196,11 @@ struct RefineTest {
 
   bool operator()(int e) const {
     std::array<int, 3> corner;
-    return midpointsDiffer(e, corner) || shadowCrosses(e, corner) || gapMouth(corner);
+    if (longestEdge(mesh, e) <= minElementEdge) {  // under the floor: a sharp change only
+      const double sharp = kSharpContrast * contrast;
+      return midpointsDiffer(e, corner, sharp) || shadowCrosses(e, corner, sharp);
+    }
+    return midpointsDiffer(e, corner, contrast) || shadowCrosses(e, corner, contrast) || gapMouth(corner);
   }
 };
 
@@ -208,7 +216,8 @@ std::vector<int> elementsToRefine(const PatchMesh& mesh, DirectLight& light,
   const std::vector<int> candidates = refinable(mesh, options, among);
   lightMidpoints(mesh, light, candidates, midpoints);
   const RefineTest needsRefining{mesh, light.vertices(), midpoints, enclosure, lightOfSamples(light), estimate.ambient,
-                                 options.exposure > 0 ? options.exposure : estimate.exposure, options.contrast};
+                                 options.exposure > 0 ? options.exposure : estimate.exposure, options.contrast,
+                                 options.minElementEdge};
   for (int e : candidates)
     if (needsRefining(e)) out.push_back(e);
   return out;
@@ -221,13 +230,14 @@ namespace {
 /// that had no midpoint probed (made by this round's bisection, or split to keep the mesh
 /// conforming), the ends of that edge, by new vertex, in `between`. `changed`: the elements
 /// round the new vertices (every other element is as it was). Edges shorter than half the
-/// smallest element's are left whole: a marked element is longer than that smallest, its
-/// halves half as long at least, and only slivers' propagation paths need shorter ones.
+/// smallest element's (the floor for sharp changes) are left whole: a marked element is longer
+/// than that smallest, its halves half as long at least, and only slivers' propagation paths
+/// need shorter ones.
 std::unordered_map<int, VertexLight> bisect(PatchMesh& mesh, const std::vector<int>& marked, double minElementEdge,
                                             MidpointLight& midpoints, std::vector<int>& changed,
                                             std::unordered_map<int, std::pair<int, int>>& between) {
   std::vector<EdgeSplit> splits;
-  bisectElements(mesh, marked, &splits, 0.5 * minElementEdge);
+  bisectElements(mesh, marked, &splits, 0.5 * minElementEdge / kSharpRefinement);
   changed.clear();
   for (const auto& s : splits)
     for (auto f : mesh.mesh.vf_range(TriMesh::VertexHandle(s.vertex))) changed.push_back(f.idx());

@@ -24,8 +24,15 @@ constexpr double kInGap = 1.0;
 /// leave the reach before meeting it, by chance.
 constexpr double kGapConeDeg = 60;
 
+/// Under the floor (AdaptiveOptions::minElementEdge), an element whose light changes across it
+/// by kSharpContrast times the contrast (a shadow's sharp edge, a crease lit on one side) is
+/// still bisected, down to elements kSharpRefinement times shorter: a thin strip of light
+/// beside an overhang stays as narrow as it is instead of smeared over a floor-sized element.
+constexpr double kSharpContrast = 8;
+constexpr double kSharpRefinement = 4;
+
 struct AdaptiveOptions {
-  double minElementEdge = 0;      ///< elements whose longest edge is this or less stay whole
+  double minElementEdge = 0;      ///< elements whose longest edge is this or less stay whole, but for sharp changes
   double contrast = kDefaultContrast;
   double exposure = 0;            ///< 0: estimated from the direct light (estimateExposure)
   int maxRounds = 64;
