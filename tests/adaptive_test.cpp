@@ -206,5 +206,40 @@ TEST(AdaptiveTest, PenumbraBoundariesWithinOneMinimumElement) {
   EXPECT_TRUE(findTJunctions(mesh).empty());
 }
 
+/// scenes/penumbra.json from 24 mm elements with a 12 mm floor: the umbra's edge, where the
+/// shown light rises from nothing within millimetres, is a sharp change (kSharpContrast times
+/// the contrast across an element), so elements there go under the floor, to a quarter of it
+/// at most; out in the full light beyond the penumbra (110 mm from the middle), where the
+/// light changes slowly, none does.
+TEST(AdaptiveTest, SharpChangesRefineUnderTheFloor) {
+  constexpr double kBase = 24, kFloor = 12;
+  const Scene scene = loadSceneToSolve(kScenes + "penumbra.json");
+  SolverBlock flags;
+  flags.maxElementEdge = kBase;
+  flags.adaptive = false;
+  const MeshedScene unrefined = meshScene(scene, resolveSettings(scene, flags));
+  PatchMesh mesh = unrefined.mesh;
+  DirectLight light(mesh, unrefined.scene.diagonal());
+  AdaptiveOptions options;
+  options.minElementEdge = kFloor;
+  refineAdaptively(mesh, light, options);
+  int under = 0;
+  double shortest = HUGE_VAL;
+  for (int e = 0; e < mesh.elementCount(); ++e) {
+    if (unrefined.scene.surfaces[size_t(mesh.surface(e))].name != "floor") continue;
+    const double edge = longestEdge(mesh, e);
+    shortest = std::min(shortest, edge);
+    if (edge >= kFloor / 2) continue;  // what bisecting elements over the floor gives
+    ++under;
+    const glm::dvec3 c = mesh.centroid(e);
+    EXPECT_LT(std::max(std::abs(c.x), std::abs(c.z)), 110) << "under the floor in the full light at " << c.x << " " << c.z;
+  }
+  std::printf("penumbra at a 12 mm floor: %d floor elements under half the floor, the shortest %.2f mm\n", under,
+              shortest);
+  EXPECT_GT(under, 0);
+  EXPECT_GE(shortest, kFloor / kSharpRefinement / 4);  // a quarter of the floor, bisected once more
+  EXPECT_TRUE(findTJunctions(mesh).empty());
+}
+
 }  // namespace
 }  // namespace rad
