@@ -64,7 +64,8 @@ DisplayEstimate estimateDisplay(const PatchMesh& mesh, const DirectLight& light)
 /// edge is split, its new vertex takes it over.
 using MidpointLight = std::unordered_map<uint64_t, VertexLight>;
 
-/// The elements that need refining: longest edge above options.minElementEdge, and either
+/// The elements that need refining: longest edge above options.minElementEdge (above a
+/// kSharpRefinement-th of it, for a change of kSharpContrast times the contrast only), and either
 /// - at the midpoint of one of their edges, the direct light differs from what Gouraud
 ///   shading shows there (the mean of the edge's ends) by more than options.contrast on
 ///   display (display units, with the ambient estimate added): a smooth falloff, which

@@ -88,7 +88,8 @@ struct Settings : Shooting {
   /// Turn mesh-file surfaces that the lit space sees from their backs round (mesh/facing.h).
   bool fixFacing = true;
   /// Refine where the direct light changes visibly (radiosity/adaptive.h), down to
-  /// minElementEdge; the contact lines are then graded by that refinement, not beforehand.
+  /// minElementEdge (a sharp change further, kSharpRefinement); the contact lines are then
+  /// graded by that refinement, not beforehand.
   bool adaptive = true;
   double minElementEdge = 0;
   double contrast = kDefaultContrast;  ///< display units

@@ -237,7 +237,7 @@ TEST(AdaptiveTest, SharpChangesRefineUnderTheFloor) {
   std::printf("penumbra at a 12 mm floor: %d floor elements under half the floor, the shortest %.2f mm\n", under,
               shortest);
   EXPECT_GT(under, 0);
-  EXPECT_GE(shortest, kFloor / kSharpRefinement / 4);  // a quarter of the floor, bisected once more
+  EXPECT_GE(shortest, kFloor / kSharpRefinement / 4);  // (a quarter of the floor halved is the least by design)
   EXPECT_TRUE(findTJunctions(mesh).empty());
 }
 

@@ -80,7 +80,8 @@ void addRefinementFlags(CLI::App& app, SolverBlock& flags) {
                  "Refine elements where the direct light changes visibly (penumbrae, contacts), "
                  "true or false (solver.adaptive; default true)");
   addPositive(app, "--min-element-edge", flags.minElementEdge,
-              "Adaptive refinement stops at elements this small, scene units; where the direct light changes 8x the contrast across one (a sharp shadow edge), 4x smaller (solver.min_element_edge; "
+              "Adaptive refinement stops at elements this small, scene units; where the direct light "
+              "changes 8x the contrast across one (a sharp shadow edge), 4x smaller (solver.min_element_edge; "
               "default: element edge / 8 with the final gather, / 4 without)");
   addInRange(app, "--contrast", flags.contrast, 1e-6, 1.0,
              "Adaptive refinement threshold: difference in display value (sRGB, 0 to 1) "
